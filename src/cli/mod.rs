@@ -1,0 +1,258 @@
+//! Command-line parsing and the commands. Uses only the public library API;
+//! everything it prints goes through here (the library never prints).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use moyo::output::write_atomic;
+use moyo::project::{self, Progress};
+use moyo::spec::{Format, SceneSpec};
+use moyo::templates;
+
+/// moyo (模様): ornamental line art as layered, plottable SVG.
+#[derive(Parser)]
+#[command(name = "moyo", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene description to layered SVG (and optionally PNG).
+    ///
+    /// With no SCENE and no --template, renders the built-in default design.
+    Render(RenderArgs),
+    /// List the built-in templates with a one-line description each.
+    Templates,
+    /// Print a template's scene description to start a design from.
+    New {
+        /// Template name (see `moyo templates`).
+        name: String,
+        /// Write to this file instead of standard output.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+}
+
+#[derive(clap::Args)]
+struct RenderArgs {
+    /// Scene description file (.toml, or .json).
+    scene: Option<PathBuf>,
+    /// Render a built-in template instead of a file.
+    #[arg(short, long, conflicts_with = "scene")]
+    template: Option<String>,
+    /// Output SVG file.
+    #[arg(short, long, default_value = "moyo.svg")]
+    output: PathBuf,
+    /// Also write a PNG preview rendered from the SVG.
+    #[arg(long)]
+    png: Option<PathBuf>,
+    /// Resolution of the PNG preview (1–2400).
+    #[arg(long, default_value_t = 150.0)]
+    dpi: f64,
+    /// Override the description's seed (0 – 9223372036854775807).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Override the number of decimals in the SVG (0–8).
+    #[arg(long)]
+    precision: Option<u8>,
+    /// Also write the line-oriented path dump (for snapshot tests).
+    #[arg(long)]
+    dump: Option<PathBuf>,
+}
+
+/// Parses the command line and runs it.
+pub fn run() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(args) => render(&args),
+        Command::Templates => list_templates(),
+        Command::New { name, output } => new(&name, output.as_deref()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::BrokenPipe) => ExitCode::SUCCESS,
+        Err(CliError::Message(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+enum CliError {
+    /// The reader of standard output went away: not an error for a filter.
+    BrokenPipe,
+    Message(String),
+}
+
+impl From<moyo::Error> for CliError {
+    fn from(e: moyo::Error) -> Self {
+        CliError::Message(e.to_string())
+    }
+}
+
+fn stdout_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::BrokenPipe
+    } else {
+        CliError::Message(format!("standard output: {e}"))
+    }
+}
+
+/// Loads the scene to render: a file, a named template or the default.
+fn load(args: &RenderArgs) -> Result<SceneSpec, CliError> {
+    match (&args.scene, &args.template) {
+        (Some(path), _) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?;
+            SceneSpec::parse(&text, Format::from_path(path))
+                .map_err(|e| CliError::Message(format!("{}:{e}", path.display())))
+        }
+        (None, name) => {
+            let name = name.as_deref().unwrap_or(templates::DEFAULT);
+            Ok(templates::get(name)?.spec()?)
+        }
+    }
+}
+
+fn render(args: &RenderArgs) -> Result<(), CliError> {
+    let mut spec = load(args)?;
+    if let Some(seed) = args.seed {
+        spec.seed = seed;
+    }
+    if let Some(p) = args.precision {
+        spec.output.precision = p;
+    }
+    // The overrides go through the same validation as the file.
+    spec.validate()
+        .map_err(|e| CliError::Message(format!("command line: {e}")))?;
+
+    let bar = DelayedBar::new();
+    let rendered = project::render_with_progress(&spec, &mut |p| bar.update(p))?;
+    bar.finish();
+
+    // Everything is computed before anything is written, so a failure
+    // leaves no output file behind.
+    let png = match &args.png {
+        Some(_) => Some(rendered.png(args.dpi)?),
+        None => None,
+    };
+    let dump = args
+        .dump
+        .as_ref()
+        .map(|_| rendered.dump(spec.output.precision));
+
+    write_atomic(&args.output, rendered.svg.as_bytes())?;
+    if let (Some(path), Some(bytes)) = (&args.png, &png) {
+        write_atomic(path, bytes)?;
+    }
+    if let (Some(path), Some(text)) = (&args.dump, &dump) {
+        write_atomic(path, text.as_bytes())?;
+    }
+
+    let stats = rendered.scene.stats();
+    eprintln!(
+        "wrote {} ({} paths, {:.0} mm pen-down){}",
+        args.output.display(),
+        stats.paths,
+        stats.pen_down_mm,
+        args.png
+            .as_ref()
+            .map(|p| format!(" and {}", p.display()))
+            .unwrap_or_default()
+    );
+    warn_outside_page(&rendered.scene);
+    Ok(())
+}
+
+/// Plotters clip or crash at the page edge; say so before the plot does.
+fn warn_outside_page(scene: &moyo::Scene) {
+    let Some(b) = scene.bounds() else { return };
+    let area = scene.page.drawable();
+    let slack = 0.01;
+    if b.x0 < area.x0 - slack
+        || b.y0 < area.y0 - slack
+        || b.x1 > area.x1 + slack
+        || b.y1 > area.y1 + slack
+    {
+        eprintln!(
+            "warning: the drawing ({:.1}, {:.1}) – ({:.1}, {:.1}) mm reaches beyond the area inside the margins ({:.1}, {:.1}) – ({:.1}, {:.1}) mm",
+            b.x0, b.y0, b.x1, b.y1, area.x0, area.y0, area.x1, area.y1
+        );
+    }
+}
+
+fn list_templates() -> Result<(), CliError> {
+    let width = templates::ALL
+        .iter()
+        .map(|t| t.name.len())
+        .max()
+        .unwrap_or(0);
+    let mut out = std::io::stdout().lock();
+    for t in templates::ALL {
+        let mark = if t.name == templates::DEFAULT {
+            " (default)"
+        } else {
+            ""
+        };
+        writeln!(out, "{:width$}  {}{mark}", t.name, t.summary()).map_err(stdout_error)?;
+    }
+    Ok(())
+}
+
+fn new(name: &str, output: Option<&Path>) -> Result<(), CliError> {
+    let t = templates::get(name)?;
+    match output {
+        Some(path) => {
+            write_atomic(path, t.text.as_bytes())?;
+            eprintln!("wrote {}", path.display());
+            Ok(())
+        }
+        None => std::io::stdout()
+            .lock()
+            .write_all(t.text.as_bytes())
+            .map_err(stdout_error),
+    }
+}
+
+/// A progress bar on stderr that appears only once work has taken more
+/// than a second, and only when stderr is a terminal (indicatif hides it
+/// otherwise).
+struct DelayedBar {
+    bar: ProgressBar,
+    start: Instant,
+}
+
+impl DelayedBar {
+    const DELAY: Duration = Duration::from_secs(1);
+
+    fn new() -> DelayedBar {
+        let bar = ProgressBar::hidden();
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} growing trees {pos}/{len} [{elapsed}]")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        DelayedBar {
+            bar,
+            start: Instant::now(),
+        }
+    }
+
+    fn update(&self, p: Progress) {
+        if self.bar.is_hidden() && self.start.elapsed() > Self::DELAY {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
+        self.bar.set_length(p.total as u64);
+        self.bar.set_position(p.done as u64);
+    }
+
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}

@@ -1,0 +1,164 @@
+//! The library's error type: what went wrong and where.
+//!
+//! Input errors carry enough context for a person to fix the input: the field
+//! path inside the scene description (`layers[1].trees[0].ratio1`), the
+//! allowed range, and — where the parser knows it — the line and column.
+//! The CLI prefixes the file name.
+
+use std::path::PathBuf;
+
+/// A position inside a text file, both counted from 1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LineCol {
+    /// Line number, from 1.
+    pub line: usize,
+    /// Column (in characters), from 1.
+    pub column: usize,
+}
+
+impl LineCol {
+    /// The line and column of byte `offset` in `text`.
+    pub fn of_offset(text: &str, offset: usize) -> LineCol {
+        let offset = offset.min(text.len());
+        let before = &text[..floor_char_boundary(text, offset)];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = before[line_start..].chars().count() + 1;
+        LineCol { line, column }
+    }
+}
+
+fn floor_char_boundary(text: &str, mut i: usize) -> usize {
+    while !text.is_char_boundary(i) {
+        i -= 1;
+    }
+    i
+}
+
+impl std::fmt::Display for LineCol {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}", self.line, self.column)
+    }
+}
+
+/// Everything that can go wrong in moyo.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The scene description is not well-formed TOML/JSON, has an unknown
+    /// key, or a value of the wrong type.
+    #[error("{}{message}", at_prefix(*at, field))]
+    Parse {
+        /// Where the parser stopped, when it knows.
+        at: Option<LineCol>,
+        /// The field path, when known (e.g. `layers[0].pen`).
+        field: Option<String>,
+        /// The parser's message.
+        message: String,
+    },
+    /// A value is well-formed but not allowed (out of range, not finite,
+    /// refers to something that does not exist).
+    #[error("{}{field}: {message}", at_prefix(*at, &None))]
+    Invalid {
+        /// Where the offending value stands, when known.
+        at: Option<LineCol>,
+        /// The field path (e.g. `layers[0].trees[1].ratio1`).
+        field: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// Generation would exceed the scene's path budget (`limits.max_paths`).
+    #[error(
+        "path budget exceeded: {what} would make more than {limit} paths \
+         (raise limits.max_paths, or lower count/generations)"
+    )]
+    Budget {
+        /// The configured limit.
+        limit: usize,
+        /// What was being generated when the budget ran out.
+        what: String,
+    },
+    /// No built-in template has this name.
+    #[error("unknown template '{name}' (available: {available})")]
+    UnknownTemplate {
+        /// The name asked for.
+        name: String,
+        /// Comma-separated list of the names that exist.
+        available: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file involved.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// The SVG could not be rasterised for the preview.
+    #[error("preview: {0}")]
+    Preview(String),
+}
+
+fn at_prefix(at: Option<LineCol>, field: &Option<String>) -> String {
+    let mut s = String::new();
+    if let Some(at) = at {
+        s.push_str(&format!("{at}: "));
+    }
+    if let Some(field) = field {
+        if !field.is_empty() && field != "." {
+            s.push_str(&format!("{field}: "));
+        }
+    }
+    s
+}
+
+impl Error {
+    /// Shorthand for an [`Error::Invalid`] without a location.
+    pub fn invalid(field: impl Into<String>, message: impl Into<String>) -> Error {
+        Error::Invalid {
+            at: None,
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+
+    /// Attaches an I/O error to the path it concerns.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Error {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// `Result` with moyo's [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_col_counts_from_one_and_in_chars() {
+        let text = "ab\ncdé\nx";
+        assert_eq!(LineCol::of_offset(text, 0), LineCol { line: 1, column: 1 });
+        assert_eq!(LineCol::of_offset(text, 3), LineCol { line: 2, column: 1 });
+        // 'x' is after "cdé\n": é is two bytes.
+        let x = text.find('x').unwrap();
+        assert_eq!(LineCol::of_offset(text, x), LineCol { line: 3, column: 1 });
+        assert_eq!(LineCol::of_offset(text, 6), LineCol { line: 2, column: 3 });
+    }
+
+    #[test]
+    fn invalid_message_names_field_and_place() {
+        let e = Error::Invalid {
+            at: Some(LineCol { line: 4, column: 9 }),
+            field: "layers[0].trees[0].ratio1".into(),
+            message: "must be between 0.05 and 1.5, got 7".into(),
+        };
+        assert_eq!(
+            e.to_string(),
+            "4:9: layers[0].trees[0].ratio1: must be between 0.05 and 1.5, got 7"
+        );
+    }
+}

@@ -1,0 +1,67 @@
+//! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
+//! path by arc length, the "far side of a line" test and tapered outlines.
+//!
+//! Coordinates are page coordinates in millimetres with y pointing *down*
+//! (the SVG convention). "Left" and "right" are as seen by someone walking
+//! along a direction on the page: for a direction pointing up the page, left
+//! is towards smaller x.
+
+mod bow;
+mod side;
+mod spline;
+mod taper;
+mod walk;
+
+pub use bow::bowed_cubic;
+pub use side::SideTest;
+pub use spline::{natural_spline, natural_spline_cubics};
+pub use taper::tapered_outline;
+pub use walk::PathWalker;
+
+use kurbo::Vec2;
+
+/// Default geometric tolerance in millimetres: flattening, nearest-point
+/// searches and curve fitting stay within this distance of the exact curve.
+/// A 0.3 mm pen cannot show an error of 0.01 mm.
+pub const TOLERANCE: f64 = 0.01;
+
+/// A side of a direction of travel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// To the left of the direction of travel.
+    Left,
+    /// To the right of the direction of travel.
+    Right,
+}
+
+impl Side {
+    /// The unit normal of the unit direction `d` that points to this side.
+    ///
+    /// With y down, the left of `d = (dx, dy)` is `(dy, -dx)`.
+    pub fn normal(self, d: Vec2) -> Vec2 {
+        match self {
+            Side::Left => Vec2::new(d.y, -d.x),
+            Side::Right => Vec2::new(-d.y, d.x),
+        }
+    }
+
+    /// The other side.
+    pub fn opposite(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn left_of_up_is_towards_smaller_x() {
+        let up = Vec2::new(0.0, -1.0);
+        assert_eq!(Side::Left.normal(up), Vec2::new(-1.0, 0.0));
+        assert_eq!(Side::Right.normal(up), Vec2::new(1.0, 0.0));
+    }
+}

@@ -1,0 +1,6 @@
+//! Motif generators: each family in its own folder. Generators read a
+//! validated description and write [`crate::scene::Group`]s; they never
+//! write files.
+
+pub mod kimono;
+pub mod tree;

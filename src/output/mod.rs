@@ -1,0 +1,22 @@
+//! Writers: everything that turns a finished [`Scene`](crate::scene::Scene)
+//! into bytes. Writers only read the scene; they never generate geometry.
+//!
+//! - [`to_svg`]: layered SVG, one Inkscape layer per pen, page size in mm,
+//!   with the scene description embedded ([`embedded_description`] reads it
+//!   back);
+//! - [`render_png`]: a PNG preview rendered from that SVG text;
+//! - [`path_dump`]: a stable one-line-per-path text for snapshot tests;
+//! - [`write_atomic`]: puts any of these on disk without half-written files;
+//! - [`write_number`]: the single number formatter behind all text outputs.
+
+mod atomic;
+mod dump;
+mod number;
+mod preview;
+mod svg;
+
+pub use atomic::write_atomic;
+pub use dump::path_dump;
+pub use number::write_number;
+pub use preview::render_png;
+pub use svg::{embedded_description, to_svg, SvgOptions};

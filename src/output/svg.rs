@@ -1,0 +1,533 @@
+//! The layered SVG writer: one Inkscape layer per pen, page size in mm.
+//!
+//! The output is meant to be sent to a plotter or cutter as is (AxiDraw,
+//! vpype, Inkscape all read the layers), and is byte-identical for equal
+//! scenes: element order follows the scene, numbers go through
+//! [`write_number`], and nothing depends on hashing or the machine.
+//!
+//! Shape of the document:
+//!
+//! ```text
+//! <?xml …?>
+//! <svg … width="210mm" height="297mm" viewBox="0 0 210 297">   one user unit = 1 mm
+//!  <metadata><moyo:scene …><![CDATA[scene description]]></moyo:scene></metadata>
+//!  <g id="pen-1" inkscape:groupmode="layer" inkscape:label="1 black" style="stroke…">
+//!   <g id="{layer id}" transform="translate({margin left} {margin top})">
+//!    <g id="{group id}">                    transform="matrix(…)" when not identity
+//!     <path id="{path id}" d="M … L … Q … C … Z"/>
+//! ```
+//!
+//! Pens come in ascending number, and only pens that draw at least one layer
+//! get an Inkscape layer; within a pen, scene layers are written back to
+//! front. Stroke colour and width live on the pen's layer; a path carries a
+//! `style` only when it has a fill.
+
+use std::collections::BTreeSet;
+
+use kurbo::{Affine, BezPath, PathEl, Point};
+
+use super::number::{write_number, MAX_PRECISION};
+use crate::scene::{Color, Group, Node, Pen, Scene, StyledPath};
+
+/// Opening of the embedded scene description, up to the first CDATA section.
+const SCENE_OPEN: &str = "<moyo:scene xmlns:moyo=\"https://moyo.invalid/scene\" format=\"toml\">";
+const SCENE_CLOSE: &str = "</moyo:scene>";
+const CDATA_OPEN: &str = "<![CDATA[";
+const CDATA_CLOSE: &str = "]]>";
+
+/// Pen used for layers whose pen number is missing from [`Scene::pens`]:
+/// their paths are still written (dropping drawing silently would be worse),
+/// in black at a common fineliner width.
+const FALLBACK_PEN_WIDTH: f64 = 0.3;
+
+/// Options of [`to_svg`].
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SvgOptions {
+    /// Decimals of path coordinates, in the path's own units (mm unless a
+    /// group scales them); at most 8. Page size, stroke widths and
+    /// transforms are always written at full precision (8 decimals), since
+    /// rounding them would move or resize the whole drawing.
+    pub precision: u8,
+}
+
+impl SvgOptions {
+    /// The largest precision honoured; larger values are clamped.
+    pub const MAX_PRECISION: u8 = MAX_PRECISION;
+
+    /// Three decimals: a micrometre, well below any plotter's step.
+    pub const DEFAULT: SvgOptions = SvgOptions { precision: 3 };
+
+    /// These options with `precision` decimals (clamped to
+    /// [`SvgOptions::MAX_PRECISION`]).
+    pub const fn with_precision(mut self, precision: u8) -> SvgOptions {
+        self.precision = if precision > MAX_PRECISION {
+            MAX_PRECISION
+        } else {
+            precision
+        };
+        self
+    }
+}
+
+impl Default for SvgOptions {
+    fn default() -> SvgOptions {
+        SvgOptions::DEFAULT
+    }
+}
+
+/// Writes `scene` as a layered SVG document (see the module documentation
+/// for its exact shape).
+pub fn to_svg(scene: &Scene, options: &SvgOptions) -> String {
+    let mut w = Writer {
+        out: String::new(),
+        precision: options.precision.min(MAX_PRECISION),
+    };
+    w.document(scene);
+    w.out
+}
+
+/// The scene description embedded by [`to_svg`], exactly as it was given,
+/// or `None` when `svg` carries none (or was not written by moyo).
+pub fn embedded_description(svg: &str) -> Option<String> {
+    let start = svg.find(SCENE_OPEN)? + SCENE_OPEN.len();
+    let mut rest = &svg[start..];
+    let mut text = String::new();
+    // The text may be split over several CDATA sections (see
+    // `write_cdata`); since none of them contains "]]>", the first one
+    // found closes the current section.
+    while let Some(after_open) = rest.strip_prefix(CDATA_OPEN) {
+        let end = after_open.find(CDATA_CLOSE)?;
+        text.push_str(&after_open[..end]);
+        rest = &after_open[end + CDATA_CLOSE.len()..];
+    }
+    rest.starts_with(SCENE_CLOSE).then_some(text)
+}
+
+/// Appends the path data of `path` (`M x y L x y … Z`, absolute commands,
+/// single spaces) with coordinates at `precision` decimals. Shared with the
+/// path dump so that both show the same text for the same geometry.
+pub(crate) fn write_path_data(out: &mut String, path: &BezPath, precision: u8) {
+    for (i, el) in path.elements().iter().enumerate() {
+        if i > 0 {
+            out.push(' ');
+        }
+        let (cmd, points): (char, &[Point]) = match el {
+            PathEl::MoveTo(p) => ('M', std::slice::from_ref(p)),
+            PathEl::LineTo(p) => ('L', std::slice::from_ref(p)),
+            PathEl::QuadTo(p1, p2) => ('Q', &[*p1, *p2]),
+            PathEl::CurveTo(p1, p2, p3) => ('C', &[*p1, *p2, *p3]),
+            PathEl::ClosePath => ('Z', &[]),
+        };
+        out.push(cmd);
+        for p in points {
+            out.push(' ');
+            write_number(out, p.x, precision);
+            out.push(' ');
+            write_number(out, p.y, precision);
+        }
+    }
+}
+
+/// The document being written.
+struct Writer {
+    out: String,
+    /// Path coordinate precision, already clamped.
+    precision: u8,
+}
+
+impl Writer {
+    fn document(&mut self, scene: &Scene) {
+        let page = &scene.page;
+        self.out
+            .push_str("<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n");
+        self.out.push_str(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" \
+             xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" \
+             xmlns:sodipodi=\"http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd\" width=\"",
+        );
+        self.exact(page.width);
+        self.out.push_str("mm\" height=\"");
+        self.exact(page.height);
+        self.out.push_str("mm\" viewBox=\"0 0 ");
+        self.exact(page.width);
+        self.out.push(' ');
+        self.exact(page.height);
+        self.out.push_str("\">\n");
+
+        if let Some(description) = &scene.description {
+            self.indent(1);
+            self.out.push_str("<metadata>");
+            self.out.push_str(SCENE_OPEN);
+            write_cdata(&mut self.out, description);
+            self.out.push_str(SCENE_CLOSE);
+            self.out.push_str("</metadata>\n");
+        }
+
+        let back_to_front = scene.layers_back_to_front();
+        // BTreeSet: ascending pen numbers, each once.
+        let pens: BTreeSet<u32> = back_to_front.iter().map(|l| l.pen).collect();
+        let page_transform = scene.page_transform().translation();
+        for number in pens {
+            let fallback;
+            let pen = match scene.pen(number) {
+                Some(pen) => pen,
+                None => {
+                    fallback = Pen {
+                        number,
+                        name: String::new(),
+                        color: Color::BLACK,
+                        width: FALLBACK_PEN_WIDTH,
+                    };
+                    &fallback
+                }
+            };
+            self.pen_open(pen);
+            for layer in back_to_front.iter().filter(|l| l.pen == number) {
+                self.indent(2);
+                self.out.push_str("<g id=\"");
+                escape_into(&mut self.out, &layer.id);
+                self.out.push_str("\" transform=\"translate(");
+                self.exact(page_transform.x);
+                self.out.push(' ');
+                self.exact(page_transform.y);
+                self.out.push_str(")\">\n");
+                self.group(&layer.content, 3);
+                self.indent(2);
+                self.out.push_str("</g>\n");
+            }
+            self.indent(1);
+            self.out.push_str("</g>\n");
+        }
+        self.out.push_str("</svg>\n");
+    }
+
+    fn pen_open(&mut self, pen: &Pen) {
+        self.indent(1);
+        let number = pen.number.to_string();
+        self.out.push_str("<g id=\"pen-");
+        self.out.push_str(&number);
+        self.out
+            .push_str("\" inkscape:groupmode=\"layer\" inkscape:label=\"");
+        // AxiDraw and vpype read the leading number as the pen/layer number.
+        self.out.push_str(&number);
+        if !pen.name.is_empty() {
+            self.out.push(' ');
+            escape_into(&mut self.out, &pen.name);
+        }
+        self.out.push_str("\" style=\"fill:none;stroke:");
+        self.out.push_str(&pen.color.to_string());
+        self.out.push_str(";stroke-width:");
+        self.exact(pen.width);
+        self.out
+            .push_str(";stroke-linecap:round;stroke-linejoin:round\">\n");
+    }
+
+    fn group(&mut self, group: &Group, depth: usize) {
+        self.indent(depth);
+        self.out.push_str("<g id=\"");
+        escape_into(&mut self.out, &group.id);
+        self.out.push('"');
+        if group.transform != Affine::IDENTITY {
+            self.out.push_str(" transform=\"matrix(");
+            for (i, c) in group.transform.as_coeffs().into_iter().enumerate() {
+                if i > 0 {
+                    self.out.push(' ');
+                }
+                self.exact(c);
+            }
+            self.out.push_str(")\"");
+        }
+        self.out.push_str(">\n");
+        for child in &group.children {
+            match child {
+                Node::Group(g) => self.group(g, depth + 1),
+                Node::Path(p) => self.path(p, depth + 1),
+            }
+        }
+        self.indent(depth);
+        self.out.push_str("</g>\n");
+    }
+
+    fn path(&mut self, path: &StyledPath, depth: usize) {
+        self.indent(depth);
+        self.out.push_str("<path id=\"");
+        escape_into(&mut self.out, &path.id);
+        self.out.push('"');
+        if let Some(fill) = path.style.fill {
+            self.out.push_str(" style=\"fill:");
+            self.out.push_str(&fill.to_string());
+            self.out.push('"');
+        }
+        self.out.push_str(" d=\"");
+        write_path_data(&mut self.out, &path.path, self.precision);
+        self.out.push_str("\"/>\n");
+    }
+
+    /// A number that must not be rounded to the coordinate precision.
+    fn exact(&mut self, v: f64) {
+        write_number(&mut self.out, v, MAX_PRECISION);
+    }
+
+    fn indent(&mut self, depth: usize) {
+        for _ in 0..depth {
+            self.out.push(' ');
+        }
+    }
+}
+
+/// Appends `text` as CDATA. A CDATA section ends at the first "]]>", so that
+/// sequence is split across two sections ("]]" ends one, ">" starts the
+/// next); an XML reader joins them back into the original text.
+fn write_cdata(out: &mut String, text: &str) {
+    out.push_str(CDATA_OPEN);
+    out.push_str(&text.replace(CDATA_CLOSE, "]]]]><![CDATA[>"));
+    out.push_str(CDATA_CLOSE);
+}
+
+/// Appends `value` escaped for a double-quoted XML attribute.
+fn escape_into(out: &mut String, value: &str) {
+    for c in value.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Layer, Style};
+    use crate::units::{Margins, Orientation, Page, PaperName};
+    use kurbo::{Line, Rect, Shape};
+    use resvg::usvg;
+
+    fn pen(number: u32, name: &str, color: Color, width: f64) -> Pen {
+        Pen {
+            number,
+            name: name.into(),
+            color,
+            width,
+        }
+    }
+
+    fn layer(id: &str, pen: u32, depth: i32, content: Group) -> Layer {
+        Layer {
+            id: id.into(),
+            name: id.into(),
+            pen,
+            depth,
+            content,
+        }
+    }
+
+    /// Two pens, three layers: pen 2 is listed first in the description and
+    /// pen 1 draws two layers at different depths.
+    fn two_pen_scene() -> Scene {
+        let mut front = Group::new("front");
+        front.push_path(
+            "stem",
+            Line::new((0.0, 0.0), (20.0, 10.0)).into_path(0.1),
+            Style::default(),
+        );
+        let mut leaf = BezPath::new();
+        leaf.move_to((5.0, 5.0));
+        leaf.quad_to((7.5, 0.0), (10.0, 5.0));
+        leaf.curve_to((9.0, 7.0), (6.0, 7.0), (5.0, 5.0));
+        leaf.close_path();
+        let mut flower = Group::new("flower");
+        flower.transform = Affine::translate((30.0, 40.0)) * Affine::scale(0.5);
+        flower.push_path(
+            "petal",
+            leaf,
+            Style {
+                fill: Some(Color::rgb(0xdc, 0x14, 0x3c)),
+            },
+        );
+        front.push_group(flower);
+
+        let mut back = Group::new("back");
+        back.push_path(
+            "box",
+            Rect::new(0.0, 0.0, 100.0, 50.0).into_path(0.1),
+            Style::default(),
+        );
+
+        let mut sky = Group::new("sky");
+        sky.push_path(
+            "cloud",
+            Line::new((1.0 / 3.0, -0.0001), (2.0 / 3.0, 1.0)).into_path(0.1),
+            Style::default(),
+        );
+
+        Scene {
+            page: Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
+            pens: vec![
+                pen(1, "black", Color::BLACK, 0.3),
+                pen(2, "red & \"fine\"", Color::rgb(255, 0, 0), 0.25),
+                pen(3, "unused", Color::rgb(0, 0, 255), 0.5),
+            ],
+            layers: vec![
+                layer("sky-layer", 2, 1, sky),
+                layer("front-layer", 1, 0, front),
+                layer("back-layer", 1, 2, back),
+            ],
+            description: Some("seed = 7\n[page]\nsize = \"A5\"\n".into()),
+        }
+    }
+
+    fn parse(svg: &str) -> usvg::Tree {
+        usvg::Tree::from_str(svg, &usvg::Options::default()).expect("usvg parses our SVG")
+    }
+
+    #[test]
+    fn snapshot_of_two_pen_scene() {
+        insta::assert_snapshot!(to_svg(&two_pen_scene(), &SvgOptions::DEFAULT));
+    }
+
+    #[test]
+    fn deterministic() {
+        let a = to_svg(&two_pen_scene(), &SvgOptions::DEFAULT);
+        let b = to_svg(&two_pen_scene().clone(), &SvgOptions::default());
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn usvg_parses_it_with_the_page_size_in_mm() {
+        let mut scene = two_pen_scene();
+        scene.page = Page::named(PaperName::A4, Orientation::Portrait, Margins::uniform(10.0));
+        let tree = parse(&to_svg(&scene, &SvgOptions::DEFAULT));
+        // usvg reports px at 96 dpi: 210 mm = 793.70 px, 297 mm = 1122.52 px.
+        let size = tree.size();
+        assert!((size.width() - 793.700_8).abs() < 0.01, "{size:?}");
+        assert!((size.height() - 1_122.519_7).abs() < 0.01, "{size:?}");
+        // The fill colour, the transform and the margin reach the renderer.
+        let petal = tree.node_by_id("petal").expect("petal survives parsing");
+        let usvg::Node::Path(petal) = petal else {
+            panic!("petal is a path")
+        };
+        assert!(petal.fill().is_some());
+        let t = petal.abs_transform();
+        assert!((t.sx - 0.5 * 96.0 / 25.4).abs() < 1e-3, "{t:?}");
+    }
+
+    #[test]
+    fn one_inkscape_layer_per_used_pen_in_pen_order() {
+        let svg = to_svg(&two_pen_scene(), &SvgOptions::DEFAULT);
+        let labels: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.contains("inkscape:groupmode=\"layer\""))
+            .map(|l| {
+                let start = l.find("inkscape:label=\"").unwrap() + "inkscape:label=\"".len();
+                &l[start..start + l[start..].find('"').unwrap()]
+            })
+            .collect();
+        assert_eq!(labels, ["1 black", "2 red &amp; &quot;fine&quot;"]);
+        assert_eq!(svg.matches("id=\"pen-1\"").count(), 1);
+        assert!(!svg.contains("pen-3"), "pens without layers are omitted");
+        // Within pen 1, the back layer (depth 2) is painted first.
+        let back = svg.find("id=\"back-layer\"").unwrap();
+        let front = svg.find("id=\"front-layer\"").unwrap();
+        let pen2 = svg.find("id=\"pen-2\"").unwrap();
+        assert!(back < front && front < pen2);
+        assert!(svg.contains("stroke:#ff0000;stroke-width:0.25;"));
+    }
+
+    #[test]
+    fn pen_missing_from_the_list_still_gets_its_layer() {
+        let mut scene = two_pen_scene();
+        scene.pens.retain(|p| p.number != 2);
+        let svg = to_svg(&scene, &SvgOptions::DEFAULT);
+        assert!(svg.contains("inkscape:label=\"2\" style=\"fill:none;stroke:#000000;"));
+        assert!(svg.contains("id=\"cloud\""));
+        parse(&svg);
+    }
+
+    #[test]
+    fn precision_changes_digits() {
+        let scene = two_pen_scene();
+        let coarse = to_svg(&scene, &SvgOptions::DEFAULT.with_precision(1));
+        let fine = to_svg(&scene, &SvgOptions::DEFAULT.with_precision(5));
+        assert!(coarse.contains("d=\"M 0.3 0 L 0.7 1\""), "{coarse}");
+        assert!(
+            fine.contains("d=\"M 0.33333 -0.0001 L 0.66667 1\""),
+            "{fine}"
+        );
+        let capped = SvgOptions::DEFAULT.with_precision(40);
+        assert_eq!(capped.precision, SvgOptions::MAX_PRECISION);
+        // Transforms and sizes keep full precision even at precision 0.
+        let zero = to_svg(&scene, &SvgOptions::DEFAULT.with_precision(0));
+        assert!(zero.contains("matrix(0.5 0 0 0.5 30 40)"));
+        assert!(zero.contains("stroke-width:0.3;"));
+    }
+
+    #[test]
+    fn filled_path_gets_its_own_style() {
+        let svg = to_svg(&two_pen_scene(), &SvgOptions::DEFAULT);
+        assert!(svg.contains(
+            "<path id=\"petal\" style=\"fill:#dc143c\" d=\"M 5 5 Q 7.5 0 10 5 C 9 7 6 7 5 5 Z\"/>"
+        ));
+        assert!(svg.contains("<path id=\"stem\" d=\"M 0 0 L 20 10\"/>"));
+    }
+
+    #[test]
+    fn identity_groups_have_no_transform() {
+        let svg = to_svg(&two_pen_scene(), &SvgOptions::DEFAULT);
+        assert!(svg.contains("<g id=\"front\">"));
+        assert!(svg.contains("<g id=\"front-layer\" transform=\"translate(10 10)\">"));
+    }
+
+    #[test]
+    fn description_round_trips_through_cdata() {
+        let mut scene = two_pen_scene();
+        for text in [
+            "",
+            "seed = 1\n",
+            "a = \"]]>\"\nb = ']]]]>' # ]]\n]]>",
+            "</moyo:scene> <![CDATA[ & < > \r\n 模様",
+        ] {
+            scene.description = Some(text.into());
+            let svg = to_svg(&scene, &SvgOptions::DEFAULT);
+            assert_eq!(embedded_description(&svg).as_deref(), Some(text));
+            parse(&svg);
+        }
+        scene.description = None;
+        let svg = to_svg(&scene, &SvgOptions::DEFAULT);
+        assert!(!svg.contains("<metadata>"));
+        assert_eq!(embedded_description(&svg), None);
+        assert_eq!(embedded_description("<svg/>"), None);
+    }
+
+    #[test]
+    fn negative_zero_never_appears() {
+        let mut scene = two_pen_scene();
+        let mut g = Group::new("mirrored");
+        g.transform = Affine::scale_non_uniform(-1.0, 1.0) * Affine::rotate(std::f64::consts::PI);
+        g.push_path(
+            "z",
+            Line::new((-0.0, -0.000_01), (-1e-12, 0.0)).into_path(0.1),
+            Style::default(),
+        );
+        scene.layers.push(layer("neg", 1, 0, g));
+        scene.page.margins.left = -0.0;
+        let svg = to_svg(&scene, &SvgOptions::DEFAULT);
+        assert!(svg.contains("<path id=\"z\" d=\"M 0 0 L 0 0\"/>"), "{svg}");
+        let tokens = svg.split(|c: char| c.is_whitespace() || "\"()".contains(c));
+        assert!(tokens.clone().all(|t| t != "-0"), "{svg}");
+        assert!(tokens.clone().any(|t| t == "0"));
+    }
+
+    #[test]
+    fn attribute_values_are_escaped() {
+        let mut scene = two_pen_scene();
+        scene.layers[0].id = "a<b>&'c\"".into();
+        let svg = to_svg(&scene, &SvgOptions::DEFAULT);
+        assert!(svg.contains("id=\"a&lt;b&gt;&amp;&apos;c&quot;\""));
+        parse(&svg);
+    }
+}

@@ -1,0 +1,89 @@
+//! Colours of pens and fills, as `#rrggbb`.
+
+use std::fmt;
+
+/// An sRGB colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Color {
+    /// Red 0–255.
+    pub r: u8,
+    /// Green 0–255.
+    pub g: u8,
+    /// Blue 0–255.
+    pub b: u8,
+}
+
+/// CSS names accepted besides hex notation.
+const NAMED: [(&str, Color); 12] = [
+    ("black", Color::rgb(0, 0, 0)),
+    ("white", Color::rgb(255, 255, 255)),
+    ("red", Color::rgb(255, 0, 0)),
+    ("green", Color::rgb(0, 128, 0)),
+    ("blue", Color::rgb(0, 0, 255)),
+    ("navy", Color::rgb(0, 0, 128)),
+    ("gray", Color::rgb(128, 128, 128)),
+    ("grey", Color::rgb(128, 128, 128)),
+    ("brown", Color::rgb(165, 42, 42)),
+    ("gold", Color::rgb(255, 215, 0)),
+    ("crimson", Color::rgb(220, 20, 60)),
+    ("indigo", Color::rgb(75, 0, 130)),
+];
+
+impl Color {
+    /// Black.
+    pub const BLACK: Color = Color::rgb(0, 0, 0);
+
+    /// A colour from its components.
+    pub const fn rgb(r: u8, g: u8, b: u8) -> Color {
+        Color { r, g, b }
+    }
+
+    /// Parses `#rgb`, `#rrggbb` or one of a few CSS names (black, white,
+    /// red, green, blue, navy, gray/grey, brown, gold, crimson, indigo).
+    pub fn parse(s: &str) -> Option<Color> {
+        let s = s.trim();
+        if let Some(hex) = s.strip_prefix('#') {
+            let digit = |c: u8| (c as char).to_digit(16).map(|d| d as u8);
+            let b = hex.as_bytes();
+            return match b.len() {
+                3 => Some(Color::rgb(
+                    digit(b[0])? * 17,
+                    digit(b[1])? * 17,
+                    digit(b[2])? * 17,
+                )),
+                6 => Some(Color::rgb(
+                    digit(b[0])? * 16 + digit(b[1])?,
+                    digit(b[2])? * 16 + digit(b[3])?,
+                    digit(b[4])? * 16 + digit(b[5])?,
+                )),
+                _ => None,
+            };
+        }
+        NAMED
+            .iter()
+            .find(|(n, _)| n.eq_ignore_ascii_case(s))
+            .map(|(_, c)| *c)
+    }
+}
+
+impl fmt::Display for Color {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "#{:02x}{:02x}{:02x}", self.r, self.g, self.b)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_hex_and_names() {
+        assert_eq!(Color::parse("#fff"), Some(Color::rgb(255, 255, 255)));
+        assert_eq!(Color::parse("#1a2B3c"), Some(Color::rgb(0x1a, 0x2b, 0x3c)));
+        assert_eq!(Color::parse("Navy"), Some(Color::rgb(0, 0, 128)));
+        assert_eq!(Color::parse("#12345"), None);
+        assert_eq!(Color::parse("#gg0000"), None);
+        assert_eq!(Color::parse("chartreuse-ish"), None);
+        assert_eq!(Color::rgb(1, 2, 255).to_string(), "#0102ff");
+    }
+}

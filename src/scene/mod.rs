@@ -1,0 +1,292 @@
+//! The scene graph: page → layers → groups → paths.
+//!
+//! Generators build [`Group`]s of [`StyledPath`]s (each a `kurbo::BezPath`);
+//! the plot pipeline and the writers only read them. A [`Layer`] carries both
+//! meanings of "layer" in SPEC §0: its `depth` (what is in front of what) and
+//! its `pen` (which physical pen draws it). Ids are stable: they are made from
+//! names and indices in the scene description, never from memory addresses or
+//! hash order, so they are the same on every run.
+
+mod budget;
+mod color;
+
+pub use budget::PathBudget;
+pub use color::Color;
+
+use kurbo::{Affine, BezPath, ParamCurveArclen, Rect, Shape};
+
+use crate::units::Page;
+
+/// Accuracy in mm used for arc-length queries (pen-down length).
+pub const LENGTH_ACCURACY: f64 = 1e-3;
+
+/// A physical pen (or cutter tool): one SVG layer per pen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pen {
+    /// The pen number, also the leading number of the SVG layer label.
+    pub number: u32,
+    /// A short name, e.g. `black`.
+    pub name: String,
+    /// Preview colour.
+    pub color: Color,
+    /// Line width in mm (for the preview and as the SVG stroke width).
+    pub width: f64,
+}
+
+/// How a path is painted.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Style {
+    /// Fill colour; `None` draws the outline only (the plotter default).
+    pub fill: Option<Color>,
+}
+
+/// A path with its style and stable id.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StyledPath {
+    /// Stable id, unique within the scene.
+    pub id: String,
+    /// The geometry, in the coordinates of the enclosing group.
+    pub path: BezPath,
+    /// Paint.
+    pub style: Style,
+}
+
+/// A node of a group: another group or a path.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Node {
+    /// A nested group.
+    Group(Group),
+    /// A leaf path.
+    Path(StyledPath),
+}
+
+/// A group of nodes sharing an affine transform.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// Stable id, unique within the scene.
+    pub id: String,
+    /// Maps the group's coordinates to its parent's.
+    pub transform: Affine,
+    /// Children in paint order (first is painted first, i.e. behind).
+    pub children: Vec<Node>,
+}
+
+impl Group {
+    /// An empty group with the identity transform.
+    pub fn new(id: impl Into<String>) -> Group {
+        Group {
+            id: id.into(),
+            transform: Affine::IDENTITY,
+            children: Vec::new(),
+        }
+    }
+
+    /// Appends a path.
+    pub fn push_path(&mut self, id: impl Into<String>, path: BezPath, style: Style) {
+        self.children.push(Node::Path(StyledPath {
+            id: id.into(),
+            path,
+            style,
+        }));
+    }
+
+    /// Appends a child group.
+    pub fn push_group(&mut self, group: Group) {
+        self.children.push(Node::Group(group));
+    }
+
+    /// Calls `f` for every path below this group with its transform to the
+    /// coordinates of `outer` (the transform of everything above the group).
+    pub fn visit_paths<'a>(&'a self, outer: Affine, f: &mut impl FnMut(&'a StyledPath, Affine)) {
+        let here = outer * self.transform;
+        for child in &self.children {
+            match child {
+                Node::Group(g) => g.visit_paths(here, f),
+                Node::Path(p) => f(p, here),
+            }
+        }
+    }
+}
+
+/// One depth layer of the scene, drawn with one pen.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layer {
+    /// Stable id.
+    pub id: String,
+    /// Human name.
+    pub name: String,
+    /// Pen number (see [`Scene::pens`]).
+    pub pen: u32,
+    /// 0 is the frontmost; larger is further back.
+    pub depth: i32,
+    /// The content, in page coordinates of the drawable area.
+    pub content: Group,
+}
+
+/// A whole drawing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Paper, margins.
+    pub page: Page,
+    /// Pens, in ascending pen number.
+    pub pens: Vec<Pen>,
+    /// Layers in the order of the scene description.
+    pub layers: Vec<Layer>,
+    /// The scene description that produced this scene, embedded in the SVG
+    /// so that the drawing can be reopened.
+    pub description: Option<String>,
+}
+
+/// Size figures of a scene or layer.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Stats {
+    /// Number of paths.
+    pub paths: usize,
+    /// Total length drawn with the pen down, in mm.
+    pub pen_down_mm: f64,
+}
+
+impl Scene {
+    /// The transform from drawable-area coordinates to page coordinates.
+    pub fn page_transform(&self) -> Affine {
+        Affine::translate((self.page.margins.left, self.page.margins.top))
+    }
+
+    /// Layers in paint order: back (largest depth) first. Layers of equal
+    /// depth keep their order in the description.
+    pub fn layers_back_to_front(&self) -> Vec<&Layer> {
+        let mut v: Vec<&Layer> = self.layers.iter().collect();
+        v.sort_by_key(|l| std::cmp::Reverse(l.depth));
+        v
+    }
+
+    /// The pen with this number.
+    pub fn pen(&self, number: u32) -> Option<&Pen> {
+        self.pens.iter().find(|p| p.number == number)
+    }
+
+    /// Calls `f` for every path with its transform to page coordinates.
+    pub fn visit_paths<'a>(&'a self, mut f: impl FnMut(&'a Layer, &'a StyledPath, Affine)) {
+        let page = self.page_transform();
+        for layer in &self.layers {
+            layer.content.visit_paths(page, &mut |p, t| f(layer, p, t));
+        }
+    }
+
+    /// Bounding box of all paths in page coordinates, `None` for an empty
+    /// scene.
+    pub fn bounds(&self) -> Option<Rect> {
+        let mut acc: Option<Rect> = None;
+        self.visit_paths(|_, p, t| {
+            if p.path.elements().is_empty() {
+                return;
+            }
+            let b = (t * p.path.clone()).bounding_box();
+            acc = Some(acc.map_or(b, |a| a.union(b)));
+        });
+        acc
+    }
+
+    /// Number of paths.
+    pub fn path_count(&self) -> usize {
+        let mut n = 0;
+        self.visit_paths(|_, _, _| n += 1);
+        n
+    }
+
+    /// Path count and pen-down length of the whole scene.
+    pub fn stats(&self) -> Stats {
+        self.stats_where(|_| true)
+    }
+
+    /// Path count and pen-down length of the layers drawn with one pen.
+    pub fn pen_stats(&self, pen: u32) -> Stats {
+        self.stats_where(|l| l.pen == pen)
+    }
+
+    fn stats_where(&self, keep: impl Fn(&Layer) -> bool) -> Stats {
+        let mut s = Stats::default();
+        self.visit_paths(|layer, p, t| {
+            if keep(layer) {
+                s.paths += 1;
+                s.pen_down_mm += path_length(&(t * p.path.clone()));
+            }
+        });
+        s
+    }
+}
+
+/// Arc length of a path in its own units, summing every segment (the pen
+/// is down along all of them; move-tos lift it).
+pub fn path_length(path: &BezPath) -> f64 {
+    path.segments().map(|s| s.arclen(LENGTH_ACCURACY)).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::units::{Margins, Orientation, PaperName};
+    use kurbo::Line;
+
+    fn scene_with_two_lines() -> Scene {
+        let mut g = Group::new("g");
+        g.push_path(
+            "a",
+            Line::new((0.0, 0.0), (30.0, 40.0)).into_path(0.1),
+            Style::default(),
+        );
+        let mut inner = Group::new("inner");
+        inner.transform = Affine::translate((100.0, 0.0)) * Affine::scale(2.0);
+        inner.push_path(
+            "b",
+            Line::new((0.0, 0.0), (10.0, 0.0)).into_path(0.1),
+            Style::default(),
+        );
+        g.push_group(inner);
+        Scene {
+            page: Page::named(PaperName::A4, Orientation::Portrait, Margins::uniform(10.0)),
+            pens: vec![Pen {
+                number: 1,
+                name: "black".into(),
+                color: Color::BLACK,
+                width: 0.3,
+            }],
+            layers: vec![Layer {
+                id: "l".into(),
+                name: "l".into(),
+                pen: 1,
+                depth: 0,
+                content: g,
+            }],
+            description: None,
+        }
+    }
+
+    #[test]
+    fn queries_apply_nested_transforms_and_margins() {
+        let s = scene_with_two_lines();
+        assert_eq!(s.path_count(), 2);
+        let st = s.stats();
+        assert!((st.pen_down_mm - (50.0 + 20.0)).abs() < 1e-6);
+        let b = s.bounds().unwrap();
+        assert_eq!(b, Rect::new(10.0, 10.0, 130.0, 50.0));
+    }
+
+    #[test]
+    fn back_to_front_sorts_by_depth_stably() {
+        let mut s = scene_with_two_lines();
+        let mut l2 = s.layers[0].clone();
+        l2.id = "back".into();
+        l2.depth = 3;
+        let mut l3 = s.layers[0].clone();
+        l3.id = "front2".into();
+        s.layers.push(l2);
+        s.layers.push(l3);
+        let order: Vec<&str> = s
+            .layers_back_to_front()
+            .iter()
+            .map(|l| l.id.as_str())
+            .collect();
+        assert_eq!(order, ["back", "l", "front2"]);
+    }
+}

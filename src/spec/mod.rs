@@ -1,0 +1,534 @@
+//! The scene description: the file format (TOML, JSON also accepted).
+//!
+//! A description together with its `seed` fully determines the drawing. It
+//! is parsed with `deny_unknown_fields` and then validated once, here, at the
+//! boundary ([`SceneSpec::validate`]): every number is finite and inside its
+//! documented range, every reference (pen numbers, override ids) exists.
+//! Everything downstream trusts a validated description.
+//!
+//! Errors name the field path (`layers[0].trees[1].params.ratio1`), the
+//! allowed range, and — for TOML — the line and column of the value.
+
+mod locate;
+mod params;
+mod validate;
+
+pub use params::{ResolvedTreeParams, TreeParams};
+pub use validate::MAX_COORD;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, LineCol, Result};
+use crate::units::{Margins, Orientation, Page, PaperName};
+
+/// The newest file format version this build reads and writes.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// File format of a scene description.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// TOML (the primary format).
+    Toml,
+    /// JSON with the same structure.
+    Json,
+}
+
+impl Format {
+    /// Guesses the format from a file name: `.json` is JSON, everything else
+    /// TOML.
+    pub fn from_path(path: &std::path::Path) -> Format {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("json") => Format::Json,
+            _ => Format::Toml,
+        }
+    }
+}
+
+/// A whole scene description.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// File format version; must be 1.
+    pub version: u32,
+    /// A short title.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub title: Option<String>,
+    /// One line saying what the design is (shown by `moyo templates`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// The seed of every random choice (0 ..= 2^63−1).
+    #[serde(default)]
+    pub seed: u64,
+    /// Paper.
+    #[serde(default)]
+    pub page: PageSpec,
+    /// Output settings.
+    #[serde(default)]
+    pub output: OutputSpec,
+    /// Safety limits.
+    #[serde(default)]
+    pub limits: LimitsSpec,
+    /// Pens; default: pen 1, black, 0.3 mm.
+    #[serde(default = "default_pens")]
+    pub pens: Vec<PenSpec>,
+    /// The overall flow: upper and lower region lines.
+    #[serde(default)]
+    pub lines: RegionLinesSpec,
+    /// Depth layers; the first listed is in front unless `depth` says
+    /// otherwise.
+    #[serde(default)]
+    pub layers: Vec<LayerSpec>,
+}
+
+/// Paper size, orientation and margins.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PageSpec {
+    /// A named size or `[width, height]` in mm.
+    #[serde(default = "default_paper")]
+    pub size: PaperSize,
+    /// `portrait` or `landscape`.
+    #[serde(default)]
+    pub orientation: Orientation,
+    /// One margin for all sides, or `[top, right, bottom, left]`, in mm.
+    #[serde(default = "default_margin")]
+    pub margin: MarginSpec,
+}
+
+impl Default for PageSpec {
+    fn default() -> Self {
+        PageSpec {
+            size: default_paper(),
+            orientation: Orientation::default(),
+            margin: default_margin(),
+        }
+    }
+}
+
+fn default_paper() -> PaperSize {
+    PaperSize::Named(PaperName::A4)
+}
+
+fn default_margin() -> MarginSpec {
+    MarginSpec::Uniform(10.0)
+}
+
+/// A named paper size or an explicit `[width, height]` in mm.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a paper name (A5, A4, A3, A2, letter, legal, tabloid) or [width, height] in mm"
+)]
+pub enum PaperSize {
+    /// A5 … tabloid.
+    Named(PaperName),
+    /// `[width, height]` in mm.
+    Custom([f64; 2]),
+}
+
+/// Margins: one number for all sides or `[top, right, bottom, left]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a margin in mm, or [top, right, bottom, left] in mm"
+)]
+pub enum MarginSpec {
+    /// The same on all sides.
+    Uniform(f64),
+    /// `[top, right, bottom, left]`.
+    Sides([f64; 4]),
+}
+
+impl PageSpec {
+    /// The resolved page.
+    pub fn page(&self) -> Page {
+        let margins = match self.margin {
+            MarginSpec::Uniform(m) => Margins::uniform(m),
+            MarginSpec::Sides([top, right, bottom, left]) => Margins {
+                top,
+                right,
+                bottom,
+                left,
+            },
+        };
+        match self.size {
+            PaperSize::Named(n) => Page::named(n, self.orientation, margins),
+            PaperSize::Custom([w, h]) => Page::sized(w, h, self.orientation, margins),
+        }
+    }
+}
+
+/// Output settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Decimal places of numbers in the SVG (0–8).
+    #[serde(default = "default_precision")]
+    pub precision: u8,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            precision: default_precision(),
+        }
+    }
+}
+
+fn default_precision() -> u8 {
+    3
+}
+
+/// Safety limits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsSpec {
+    /// The most paths the scene may make (1 – 5,000,000); generation stops
+    /// with an error past it.
+    #[serde(default = "default_max_paths")]
+    pub max_paths: usize,
+}
+
+impl Default for LimitsSpec {
+    fn default() -> Self {
+        LimitsSpec {
+            max_paths: default_max_paths(),
+        }
+    }
+}
+
+fn default_max_paths() -> usize {
+    crate::scene::PathBudget::DEFAULT_LIMIT
+}
+
+/// A pen (one SVG layer per pen).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PenSpec {
+    /// Pen number 1–999; the SVG layer label starts with it.
+    pub number: u32,
+    /// Short name, e.g. `black`.
+    #[serde(default = "default_pen_name")]
+    pub name: String,
+    /// `#rrggbb`, `#rgb` or a CSS colour name.
+    #[serde(default = "default_pen_color")]
+    pub color: String,
+    /// Line width in mm (0.01–20).
+    #[serde(default = "default_pen_width")]
+    pub width: f64,
+}
+
+fn default_pens() -> Vec<PenSpec> {
+    vec![PenSpec {
+        number: 1,
+        name: default_pen_name(),
+        color: default_pen_color(),
+        width: default_pen_width(),
+    }]
+}
+
+fn default_pen_name() -> String {
+    "black".into()
+}
+
+fn default_pen_color() -> String {
+    "black".into()
+}
+
+fn default_pen_width() -> f64 {
+    0.3
+}
+
+/// A list of control points `[[x, y], …]` in mm.
+pub type Points = Vec<[f64; 2]>;
+
+/// The overall flow (SPEC §1, "Flow"): lines bounding the pattern.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionLinesSpec {
+    /// Upper region line (上領域線): no tree vertex grows above it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub upper: Option<Points>,
+    /// Lower region line (下領域線): trees growing downward stop below it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lower: Option<Points>,
+}
+
+/// One depth layer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LayerSpec {
+    /// Unique name; the layer's id in the SVG is made from it.
+    pub name: String,
+    /// Pen number.
+    #[serde(default = "default_pen_number")]
+    pub pen: u32,
+    /// 0 is the front; larger is further back. Default: position in the list.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub depth: Option<i32>,
+    /// How tree limbs are drawn.
+    #[serde(default)]
+    pub limbs: LimbSpec,
+    /// Tree sets, each along its own centre line.
+    #[serde(default)]
+    pub trees: Vec<TreeSetSpec>,
+}
+
+fn default_pen_number() -> u32 {
+    1
+}
+
+/// How limbs become paths (SPEC §1.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LimbStyle {
+    /// A closed outline whose width tapers from `width` to `tip_width`.
+    #[default]
+    Outline,
+    /// A single centre stroke, for one-pass plotting.
+    Stroke,
+}
+
+/// Limb drawing settings of a layer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimbSpec {
+    /// `outline` or `stroke`.
+    #[serde(default)]
+    pub style: LimbStyle,
+    /// Trunk width at the root in mm (0.05–50); branches start at the
+    /// width of their parent where they leave it.
+    #[serde(default = "default_limb_width")]
+    pub width: f64,
+    /// Width at every tip in mm (0–50).
+    #[serde(default = "default_tip_width")]
+    pub tip_width: f64,
+    /// Sideways bow of two-point limbs as a fraction of their length
+    /// (−1 – 1); positive bows towards the branch's own side.
+    #[serde(default = "default_bow")]
+    pub bow: f64,
+    /// Fill colour for outlines (default: none, outline only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fill: Option<String>,
+}
+
+impl Default for LimbSpec {
+    fn default() -> Self {
+        LimbSpec {
+            style: LimbStyle::default(),
+            width: default_limb_width(),
+            tip_width: default_tip_width(),
+            bow: default_bow(),
+            fill: None,
+        }
+    }
+}
+
+fn default_limb_width() -> f64 {
+    2.4
+}
+
+fn default_tip_width() -> f64 {
+    0.3
+}
+
+fn default_bow() -> f64 {
+    0.08
+}
+
+/// The eight tree rules of SPEC §1.2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TreeRule {
+    /// Trunk with alternating complex branches (TreeSub depth 3).
+    Tree1,
+    /// Trunk with alternating simple branches.
+    Tree2,
+    /// Branches on both sides, pattern by generation mod 3.
+    Tree3,
+    /// Branches that fork in three at their end.
+    Tree4,
+    /// Branches on the left only, each as deep as the generations left.
+    Tree5,
+    /// Two root branches, then a Tree2 trunk.
+    Tree6,
+    /// Splits at the root into two Tree2 trunks.
+    Tree7,
+    /// Spray along a 4-point base curve (not recursive).
+    Tree8,
+}
+
+impl TreeRule {
+    /// All rules in order.
+    pub const ALL: [TreeRule; 8] = [
+        TreeRule::Tree1,
+        TreeRule::Tree2,
+        TreeRule::Tree3,
+        TreeRule::Tree4,
+        TreeRule::Tree5,
+        TreeRule::Tree6,
+        TreeRule::Tree7,
+        TreeRule::Tree8,
+    ];
+}
+
+/// How trees stand on their centre line (SPEC §1.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Growth {
+    /// Perpendicular to the centre line, on its upper side.
+    #[default]
+    Perpendicular,
+    /// Along the centre line, in its drawing direction.
+    Parallel,
+}
+
+/// A set of trees of one rule along one centre line.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TreeSetSpec {
+    /// Id of the set, unique in its layer (default `trees-K`, K its index).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub id: Option<String>,
+    /// Which of Tree1–Tree8.
+    pub rule: TreeRule,
+    /// Number of trees (0–10,000), at even arc-length spacing.
+    #[serde(default = "default_count")]
+    pub count: u32,
+    /// The centre line (中心線) of this set: ≥ 2 control points in mm.
+    pub centre: Points,
+    /// Perpendicular to or along the centre line.
+    #[serde(default)]
+    pub growth: Growth,
+    /// Extra rotation of every tree in degrees, clockwise (180 grows
+    /// downward from a perpendicular line).
+    #[serde(default)]
+    pub rotate: f64,
+    /// Rule parameters.
+    #[serde(default)]
+    pub params: TreeParams,
+    /// Per-tree adjustments by id (`tree-0`, `tree-1`, …).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub overrides: Vec<TreeOverride>,
+}
+
+fn default_count() -> u32 {
+    1
+}
+
+/// Final adjustment of one tree (SPEC §1.4).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TreeOverride {
+    /// The tree's id within its set: `tree-N`.
+    pub id: String,
+    /// Move the root here (mm).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root: Option<[f64; 2]>,
+    /// Rotate the growth direction by this many degrees, clockwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<f64>,
+    /// Scale lengths and widths (0.01–100).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+    /// Parameters that replace the set's for this tree.
+    #[serde(default, skip_serializing_if = "TreeParams::is_empty")]
+    pub params: TreeParams,
+}
+
+impl SceneSpec {
+    /// Parses and validates a description.
+    pub fn parse(text: &str, format: Format) -> Result<SceneSpec> {
+        let spec: SceneSpec = match format {
+            Format::Toml => parse_toml(text)?,
+            Format::Json => parse_json(text)?,
+        };
+        spec.validate().map_err(|e| match (e, format) {
+            (
+                Error::Invalid {
+                    at: None,
+                    field,
+                    message,
+                },
+                Format::Toml,
+            ) => Error::Invalid {
+                at: locate::toml_field(text, &field),
+                field,
+                message,
+            },
+            (e, _) => e,
+        })?;
+        Ok(spec)
+    }
+
+    /// Checks every range and reference (see the module docs).
+    pub fn validate(&self) -> Result<()> {
+        validate::scene(self)
+    }
+
+    /// Writes the description as TOML. Parsing the result gives back an
+    /// equal value.
+    pub fn to_toml(&self) -> String {
+        // Serialising plain data structs cannot fail; a failure would be a
+        // bug in these types, so it is reported loudly.
+        toml::to_string(self).expect("scene description serialises to TOML")
+    }
+
+    /// The resolved page.
+    pub fn page(&self) -> Page {
+        self.page.page()
+    }
+}
+
+fn parse_toml(text: &str) -> Result<SceneSpec> {
+    let de = toml::Deserializer::parse(text).map_err(|e| toml_error(text, None, &e))?;
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let field = e.path().to_string();
+        toml_error(text, Some(field), e.inner())
+    })
+}
+
+fn toml_error(text: &str, field: Option<String>, e: &toml::de::Error) -> Error {
+    let at = e.span().map(|s| LineCol::of_offset(text, s.start));
+    Error::Parse {
+        at,
+        field,
+        message: e.message().trim().to_string(),
+    }
+}
+
+fn parse_json(text: &str) -> Result<SceneSpec> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let spec = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let field = e.path().to_string();
+        let inner = e.into_inner();
+        Error::Parse {
+            at: (inner.line() > 0).then(|| LineCol {
+                line: inner.line(),
+                column: inner.column(),
+            }),
+            field: Some(field),
+            message: strip_json_position(&inner.to_string()),
+        }
+    })?;
+    de.end().map_err(|e| Error::Parse {
+        at: Some(LineCol {
+            line: e.line(),
+            column: e.column(),
+        }),
+        field: None,
+        message: strip_json_position(&e.to_string()),
+    })?;
+    Ok(spec)
+}
+
+/// serde_json appends " at line L column C"; moyo prints the place itself.
+fn strip_json_position(msg: &str) -> String {
+    match msg.rfind(" at line ") {
+        Some(i) => msg[..i].to_string(),
+        None => msg.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests;

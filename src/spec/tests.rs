@@ -1,0 +1,120 @@
+use super::*;
+
+const MINIMAL: &str = r#"
+version = 1
+seed = 5
+
+[[layers]]
+name = "front"
+
+[[layers.trees]]
+rule = "tree3"
+count = 2
+centre = [[10, 100], [150, 120]]
+
+[layers.trees.params]
+generations = 5
+"#;
+
+fn parse(text: &str) -> Result<SceneSpec> {
+    SceneSpec::parse(text, Format::Toml)
+}
+
+#[test]
+fn minimal_file_gets_defaults() {
+    let s = parse(MINIMAL).unwrap();
+    assert_eq!(s.pens.len(), 1);
+    assert_eq!(s.output.precision, 3);
+    let p = s.layers[0].trees[0].params.resolve();
+    assert_eq!(p.generations, 5);
+    assert_eq!(p.ratio1, 0.85);
+    assert_eq!(s.page().width, 210.0);
+}
+
+#[test]
+fn round_trips_through_toml_and_json() {
+    let s = parse(MINIMAL).unwrap();
+    let again = parse(&s.to_toml()).unwrap();
+    assert_eq!(s, again);
+    let json = serde_json::to_string(&s).unwrap();
+    assert_eq!(SceneSpec::parse(&json, Format::Json).unwrap(), s);
+}
+
+#[test]
+fn unknown_key_is_rejected_with_its_place() {
+    let text = MINIMAL.replace("generations = 5", "generations = 5\nratio9 = 1");
+    let e = parse(&text).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains("ratio9"), "{msg}");
+    assert!(msg.starts_with("15:1:"), "{msg}");
+}
+
+#[test]
+fn wrong_type_names_the_field() {
+    let text = MINIMAL.replace("count = 2", "count = \"two\"");
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(msg.contains("layers[0].trees[0].count"), "{msg}");
+    assert!(msg.starts_with("10:9:"), "{msg}");
+}
+
+#[test]
+fn out_of_range_value_names_range_and_place() {
+    let text = MINIMAL.replace("generations = 5", "generations = 500");
+    let msg = parse(&text).unwrap_err().to_string();
+    assert_eq!(
+        msg,
+        "14:15: layers[0].trees[0].params.generations: must be between 0 and 64, got 500"
+    );
+}
+
+#[test]
+fn non_finite_numbers_are_rejected() {
+    let text = MINIMAL.replace("[[10, 100]", "[[nan, 100]");
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(msg.contains("layers[0].trees[0].centre[0]"), "{msg}");
+    let text = MINIMAL.replace("generations = 5", "ratio1 = inf");
+    assert!(parse(&text).unwrap_err().to_string().contains("got inf"));
+}
+
+#[test]
+fn references_must_exist() {
+    let text = MINIMAL.replace("name = \"front\"", "name = \"front\"\npen = 4");
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(msg.contains("no pen 4 is defined (defined: 1)"), "{msg}");
+
+    let text = format!("{MINIMAL}\n[[layers.trees.overrides]]\nid = \"tree-7\"\nscale = 2\n");
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(
+        msg.contains("'tree-7' matches no tree (trees are tree-0 … tree-1)"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn json_errors_have_line_and_column() {
+    let e = SceneSpec::parse("{\"version\": 1,\n \"sed\": 3}", Format::Json).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.starts_with("2:"), "{msg}");
+    assert!(msg.contains("sed"), "{msg}");
+}
+
+#[test]
+fn broken_toml_is_a_parse_error_with_place() {
+    let e = parse("version = 1\n[[layers]\nname = 'x'\n").unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::Parse {
+                at: Some(LineCol { line: 2, .. }),
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn version_is_checked() {
+    let msg = parse("version = 2").unwrap_err().to_string();
+    assert!(msg.contains("unsupported format version 2"), "{msg}");
+}

@@ -1,0 +1,286 @@
+//! Validation of a parsed description: ranges, finiteness, references.
+//!
+//! Returns the first problem found, as [`Error::Invalid`] with the field
+//! path; [`super::SceneSpec::parse`] adds the line and column.
+
+use std::collections::BTreeSet;
+use std::fmt::Display;
+
+use super::{LayerSpec, MarginSpec, PaperSize, SceneSpec, TreeSetSpec};
+use crate::error::{Error, Result};
+use crate::scene::Color;
+
+/// Largest coordinate accepted anywhere, in mm (100 m): far beyond any
+/// plotter, small enough that nothing overflows.
+pub const MAX_COORD: f64 = 100_000.0;
+
+/// `lo <= v <= hi`; NaN fails with the same message.
+pub(crate) fn range<T: PartialOrd + Display + Copy>(field: &str, v: T, lo: T, hi: T) -> Result<()> {
+    if lo <= v && v <= hi {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            field,
+            format!("must be between {lo} and {hi}, got {v}"),
+        ))
+    }
+}
+
+fn point(field: &str, p: [f64; 2]) -> Result<()> {
+    for (axis, v) in ["x", "y"].iter().zip(p) {
+        if !(v.is_finite() && v.abs() <= MAX_COORD) {
+            return Err(Error::invalid(
+                field,
+                format!("{axis} must be a finite number within ±{MAX_COORD} mm, got {v}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn points(field: &str, pts: &[[f64; 2]], min: usize) -> Result<()> {
+    if pts.len() < min {
+        return Err(Error::invalid(
+            field,
+            format!("needs at least {min} points [x, y], got {}", pts.len()),
+        ));
+    }
+    if pts.len() > 10_000 {
+        return Err(Error::invalid(field, "at most 10000 points"));
+    }
+    for (i, p) in pts.iter().enumerate() {
+        point(&format!("{field}[{i}]"), *p)?;
+    }
+    let first = pts[0];
+    if pts.iter().all(|p| *p == first) {
+        return Err(Error::invalid(
+            field,
+            "all points are the same; a line needs length",
+        ));
+    }
+    Ok(())
+}
+
+/// Tree8's base curve: four finite points in trunk units, not all equal.
+pub(crate) fn base_curve(field: &str, pts: &[[f64; 2]; 4]) -> Result<()> {
+    for (i, p) in pts.iter().enumerate() {
+        for v in p {
+            if !(v.is_finite() && v.abs() <= 1000.0) {
+                return Err(Error::invalid(
+                    format!("{field}[{i}]"),
+                    format!("must be finite and within ±1000 trunk lengths, got {v}"),
+                ));
+            }
+        }
+    }
+    if pts.iter().all(|p| *p == pts[0]) {
+        return Err(Error::invalid(
+            field,
+            "all points are the same; the base curve needs length",
+        ));
+    }
+    Ok(())
+}
+
+/// An id usable in SVG and in override references.
+fn id(field: &str, s: &str) -> Result<()> {
+    let ok = !s.is_empty()
+        && s.len() <= 64
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            field,
+            format!("'{s}' is not a valid id: use 1–64 letters, digits, '-' or '_'"),
+        ))
+    }
+}
+
+pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
+    if s.version != super::FORMAT_VERSION {
+        return Err(Error::invalid(
+            "version",
+            format!(
+                "unsupported format version {}; this moyo reads version {}",
+                s.version,
+                super::FORMAT_VERSION
+            ),
+        ));
+    }
+    range("seed", s.seed, 0, i64::MAX as u64)?;
+    page(s)?;
+    range("output.precision", s.output.precision, 0, 8)?;
+    range("limits.max_paths", s.limits.max_paths, 1, 5_000_000)?;
+
+    if s.pens.is_empty() {
+        return Err(Error::invalid("pens", "at least one pen is needed"));
+    }
+    let mut numbers = BTreeSet::new();
+    for (i, pen) in s.pens.iter().enumerate() {
+        let f = format!("pens[{i}]");
+        range(&format!("{f}.number"), pen.number, 1, 999)?;
+        if !numbers.insert(pen.number) {
+            return Err(Error::invalid(
+                format!("{f}.number"),
+                format!("pen {} is defined twice", pen.number),
+            ));
+        }
+        if pen.name.trim().is_empty() || pen.name.len() > 64 {
+            return Err(Error::invalid(
+                format!("{f}.name"),
+                "must be 1–64 characters",
+            ));
+        }
+        if Color::parse(&pen.color).is_none() {
+            return Err(bad_color(&format!("{f}.color"), &pen.color));
+        }
+        range(&format!("{f}.width"), pen.width, 0.01, 20.0)?;
+    }
+
+    if let Some(upper) = &s.lines.upper {
+        points("lines.upper", upper, 2)?;
+    }
+    if let Some(lower) = &s.lines.lower {
+        points("lines.lower", lower, 2)?;
+    }
+
+    let mut names = BTreeSet::new();
+    for (i, layer) in s.layers.iter().enumerate() {
+        let f = format!("layers[{i}]");
+        if !names.insert(layer.name.as_str()) {
+            return Err(Error::invalid(
+                format!("{f}.name"),
+                format!("layer name '{}' is used twice", layer.name),
+            ));
+        }
+        self::layer(&f, layer, &numbers)?;
+    }
+    Ok(())
+}
+
+fn bad_color(field: &str, value: &str) -> Error {
+    Error::invalid(
+        field,
+        format!("'{value}' is not a colour: use #rrggbb, #rgb or a CSS name such as black"),
+    )
+}
+
+fn page(s: &SceneSpec) -> Result<()> {
+    if let PaperSize::Custom([w, h]) = s.page.size {
+        range("page.size[0]", w, 10.0, 10_000.0)?;
+        range("page.size[1]", h, 10.0, 10_000.0)?;
+    }
+    let sides = match s.page.margin {
+        MarginSpec::Uniform(m) => [m; 4],
+        MarginSpec::Sides(m) => m,
+    };
+    for v in sides {
+        range("page.margin", v, 0.0, 1_000.0)?;
+    }
+    let p = s.page();
+    if sides[1] + sides[3] >= p.width || sides[0] + sides[2] >= p.height {
+        return Err(Error::invalid(
+            "page.margin",
+            format!(
+                "the margins leave no drawable area on a {} × {} mm page",
+                p.width, p.height
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn layer(f: &str, layer: &LayerSpec, pens: &BTreeSet<u32>) -> Result<()> {
+    if layer.name.trim().is_empty() || layer.name.len() > 64 {
+        return Err(Error::invalid(
+            format!("{f}.name"),
+            "must be 1–64 characters",
+        ));
+    }
+    if !pens.contains(&layer.pen) {
+        return Err(Error::invalid(
+            format!("{f}.pen"),
+            format!(
+                "no pen {} is defined (defined: {})",
+                layer.pen,
+                pens.iter()
+                    .map(u32::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    }
+    if let Some(d) = layer.depth {
+        range(&format!("{f}.depth"), d, -1000, 1000)?;
+    }
+    let l = &layer.limbs;
+    range(&format!("{f}.limbs.width"), l.width, 0.05, 50.0)?;
+    range(&format!("{f}.limbs.tip_width"), l.tip_width, 0.0, 50.0)?;
+    range(&format!("{f}.limbs.bow"), l.bow, -1.0, 1.0)?;
+    if let Some(fill) = &l.fill {
+        if Color::parse(fill).is_none() {
+            return Err(bad_color(&format!("{f}.limbs.fill"), fill));
+        }
+    }
+    let mut ids = BTreeSet::new();
+    for (k, set) in layer.trees.iter().enumerate() {
+        let sf = format!("{f}.trees[{k}]");
+        let set_id = set.id.clone().unwrap_or_else(|| format!("trees-{k}"));
+        if let Some(given) = &set.id {
+            id(&format!("{sf}.id"), given)?;
+        }
+        if !ids.insert(set_id.clone()) {
+            return Err(Error::invalid(
+                format!("{sf}.id"),
+                format!("tree set id '{set_id}' is used twice in this layer"),
+            ));
+        }
+        tree_set(&sf, set)?;
+    }
+    Ok(())
+}
+
+fn tree_set(f: &str, set: &TreeSetSpec) -> Result<()> {
+    range(&format!("{f}.count"), set.count, 0, 10_000)?;
+    points(&format!("{f}.centre"), &set.centre, 2)?;
+    range(&format!("{f}.rotate"), set.rotate, -360.0, 360.0)?;
+    set.params.check(&format!("{f}.params"))?;
+    let mut seen = BTreeSet::new();
+    for (j, o) in set.overrides.iter().enumerate() {
+        let of = format!("{f}.overrides[{j}]");
+        let index =
+            o.id.strip_prefix("tree-")
+                .and_then(|n| n.parse::<u32>().ok())
+                .filter(|n| *n < set.count && o.id == format!("tree-{n}"));
+        if index.is_none() {
+            let hint = match set.count {
+                0 => "this set has no trees".to_string(),
+                1 => "the only tree is tree-0".to_string(),
+                n => format!("trees are tree-0 … tree-{}", n - 1),
+            };
+            return Err(Error::invalid(
+                format!("{of}.id"),
+                format!("'{}' matches no tree ({hint})", o.id),
+            ));
+        }
+        if !seen.insert(o.id.as_str()) {
+            return Err(Error::invalid(
+                format!("{of}.id"),
+                format!("'{}' is overridden twice", o.id),
+            ));
+        }
+        if let Some(p) = o.root {
+            point(&format!("{of}.root"), p)?;
+        }
+        if let Some(r) = o.rotate {
+            range(&format!("{of}.rotate"), r, -360.0, 360.0)?;
+        }
+        if let Some(s) = o.scale {
+            range(&format!("{of}.scale"), s, 0.01, 100.0)?;
+        }
+        o.params.check(&format!("{of}.params"))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,71 @@
+//! The ready scene descriptions in `templates/`, built into the binary.
+
+use crate::error::{Error, Result};
+use crate::spec::{Format, SceneSpec};
+
+/// A built-in scene description.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Template {
+    /// Name, as given to `moyo new NAME`.
+    pub name: &'static str,
+    /// The TOML text.
+    pub text: &'static str,
+}
+
+/// The template `moyo render` uses when no scene is given.
+pub const DEFAULT: &str = "tomesode-hem";
+
+/// Every template, in listing order.
+pub const ALL: &[Template] = &[
+    Template {
+        name: "tomesode-hem",
+        text: include_str!("../templates/tomesode-hem.toml"),
+    },
+    Template {
+        name: "tree-rules",
+        text: include_str!("../templates/tree-rules.toml"),
+    },
+];
+
+impl Template {
+    /// The template's parsed description.
+    pub fn spec(&self) -> Result<SceneSpec> {
+        SceneSpec::parse(self.text, Format::Toml)
+    }
+
+    /// Its one-line description (the `description` field).
+    pub fn summary(&self) -> String {
+        self.spec()
+            .ok()
+            .and_then(|s| s.description)
+            .unwrap_or_default()
+    }
+}
+
+/// The template called `name`.
+pub fn get(name: &str) -> Result<&'static Template> {
+    ALL.iter()
+        .find(|t| t.name == name)
+        .ok_or_else(|| Error::UnknownTemplate {
+            name: name.to_string(),
+            available: ALL.iter().map(|t| t.name).collect::<Vec<_>>().join(", "),
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_template_parses_and_has_a_summary() {
+        for t in ALL {
+            let spec = t.spec().unwrap_or_else(|e| panic!("{}: {e}", t.name));
+            assert!(spec.description.is_some(), "{} has no description", t.name);
+        }
+        assert!(get(DEFAULT).is_ok());
+        assert!(get("nope")
+            .unwrap_err()
+            .to_string()
+            .contains("tomesode-hem"));
+    }
+}
