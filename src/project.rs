@@ -24,7 +24,7 @@ pub fn build_scene(spec: &SceneSpec) -> Result<Scene> {
     build_scene_with_progress(spec, &mut |_| {})
 }
 
-/// [`build_scene`], reporting progress after every tree set.
+/// [`build_scene`], reporting progress after every tree.
 pub fn build_scene_with_progress(
     spec: &SceneSpec,
     progress: &mut dyn FnMut(Progress),
@@ -45,10 +45,20 @@ pub fn build_scene_with_progress(
         let mut content = Group::new(format!("{id}.motifs"));
         for (k, set) in layer.trees.iter().enumerate() {
             let set_id = format!("{id}.{}", kimono::set_id(set, k));
-            let group = kimono::tree_set(set, &set_id, &layer.limbs, &flow, seed, &mut budget)?;
+            let mut tree_done = || {
+                done += 1;
+                progress(Progress { done, total });
+            };
+            let group = kimono::tree_set(
+                set,
+                &set_id,
+                &layer.limbs,
+                &flow,
+                seed,
+                &mut budget,
+                &mut tree_done,
+            )?;
             content.push_group(group);
-            done += set.count as usize;
-            progress(Progress { done, total });
         }
         layers.push(Layer {
             id,

@@ -98,7 +98,11 @@ mod tests {
         let first: Vec<u64> = (0..3).map(|_| s.next_u64()).collect();
         assert_eq!(
             first,
-            [0xae90_bfb5_395d_5ba1, 0xf345_3fc6_2579_9188, 0x6d71_b708_c5b6_538c]
+            [
+                0xae90_bfb5_395d_5ba1,
+                0xf345_3fc6_2579_9188,
+                0x6d71_b708_c5b6_538c
+            ]
         );
         assert_eq!(Seed(7).derive("layer:x").0, 0x98b7_eb1a_252d_dd16);
         let mut again = Seed(42).stream();

@@ -1,1 +1,8 @@
+//! The integration test binary (`cargo test --test integration`).
+//!
+//! One binary, one module per area; see tests/README.md.
 
+mod cli;
+mod compat;
+mod determinism;
+mod snapshots;

@@ -54,7 +54,7 @@ struct RenderArgs {
     #[arg(long)]
     png: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
-    #[arg(long, default_value_t = 150.0)]
+    #[arg(long, default_value_t = 150.0, value_parser = parse_dpi)]
     dpi: f64,
     /// Override the description's seed (0 – 9223372036854775807).
     #[arg(long)]
@@ -65,6 +65,13 @@ struct RenderArgs {
     /// Also write the line-oriented path dump (for snapshot tests).
     #[arg(long)]
     dump: Option<PathBuf>,
+}
+
+/// Rejects a bad `--dpi` while parsing, whether or not `--png` is given.
+fn parse_dpi(s: &str) -> Result<f64, String> {
+    let dpi: f64 = s.parse().map_err(|e| format!("{e}"))?;
+    moyo::output::check_dpi(dpi).map_err(|e| e.to_string())?;
+    Ok(dpi)
 }
 
 /// Parses the command line and runs it.

@@ -18,5 +18,5 @@ mod svg;
 pub use atomic::write_atomic;
 pub use dump::path_dump;
 pub use number::write_number;
-pub use preview::render_png;
+pub use preview::{check_dpi, render_png};
 pub use svg::{embedded_description, to_svg, SvgOptions};

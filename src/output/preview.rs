@@ -31,14 +31,22 @@ pub fn render_png(svg: &str, dpi: f64) -> Result<Vec<u8>> {
         .map_err(|e| Error::Preview(format!("cannot encode PNG: {e}")))
 }
 
-fn render_pixmap(svg: &str, dpi: f64) -> Result<Pixmap> {
+/// Checks a preview resolution: 1–2400 dpi. Callers that take a dpi from a
+/// user check it up front, so a bad value fails before any work is done.
+pub fn check_dpi(dpi: f64) -> Result<()> {
     // `contains` is false for NaN, so this also rejects it.
-    if !DPI_RANGE.contains(&dpi) {
-        return Err(Error::invalid(
+    if DPI_RANGE.contains(&dpi) {
+        Ok(())
+    } else {
+        Err(Error::invalid(
             "dpi",
             format!("must be between 1 and 2400, got {dpi}"),
-        ));
+        ))
     }
+}
+
+fn render_pixmap(svg: &str, dpi: f64) -> Result<Pixmap> {
+    check_dpi(dpi)?;
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
         .map_err(|e| Error::Preview(format!("cannot read SVG: {e}")))?;
     let scale = dpi / CSS_DPI;

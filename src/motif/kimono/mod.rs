@@ -107,7 +107,8 @@ pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
         .collect()
 }
 
-/// Grows and draws a tree set into a group with id `group_id`.
+/// Grows and draws a tree set into a group with id `group_id`, calling
+/// `tree_done` after each tree.
 ///
 /// Each tree gets its own random stream, derived from `seed` and its id, so
 /// changing one set or tree leaves the others as they were.
@@ -118,6 +119,7 @@ pub fn tree_set(
     flow: &Flow,
     seed: Seed,
     budget: &mut PathBudget,
+    tree_done: &mut dyn FnMut(),
 ) -> Result<Group> {
     let mut group = Group::new(group_id);
     let style = Style {
@@ -157,6 +159,7 @@ pub fn tree_set(
             tree_group.push_path(format!("{full_id}.limb-{k}"), path, style.clone());
         }
         group.push_group(tree_group);
+        tree_done();
     }
     Ok(group)
 }
@@ -165,3 +168,6 @@ pub fn tree_set(
 pub fn set_id(set: &TreeSetSpec, k: usize) -> String {
     set.id.clone().unwrap_or_else(|| format!("trees-{k}"))
 }
+
+#[cfg(test)]
+mod tests;

@@ -392,6 +392,10 @@ impl Grower<'_> {
             return Ok(());
         }
         self.trunk(gens, root, top, Branching::Simple)?;
+        // The source grows root branches inside `if (世代 > 0)`.
+        if gens == 0 {
+            return Ok(());
+        }
         let at = Attach { limb: 0, vertex: 0 };
         for side in [Side::Left, Side::Right] {
             let tip = root + self.step(top - root, self.p.ratio3, sign(side) * self.p.ang3);

@@ -1,0 +1,460 @@
+//! Wall-clock benchmark of the render pipeline, through the public API only.
+//!
+//! Measures, with [`std::time::Instant`], the median of several runs (after
+//! warm-up runs that are not counted):
+//!
+//! 1. **Default design** (`templates::get(templates::DEFAULT)`): parsing the
+//!    description, building the scene, writing the SVG string, rendering the
+//!    PNG preview at 150 dpi (the CLI default), and the whole chain end to
+//!    end.
+//! 2. **Scaling with tree count**: a scene written in code — one layer, one
+//!    tree set of rule `tree1`, `generations = 6`, along a straight
+//!    horizontal centre line on a 4000 × 1000 mm page without region lines —
+//!    with `count` = 10, 30, 100, 300, 1000, once with `outline` limbs and
+//!    once with `stroke` limbs. Reports scene-build time, SVG time, paths,
+//!    SVG bytes, time per tree, and the local growth exponent
+//!    `k = ln(t₂/t₁) / ln(n₂/n₁)` against the previous row (1 is linear,
+//!    2 quadratic).
+//!
+//! Everything goes to standard output as Markdown tables, ready to paste into
+//! `BENCHMARKS.md`.
+//!
+//! Run it in release mode (debug timings mean nothing):
+//!
+//! ```text
+//! cargo run --release --example bench             # 5 runs, 1 warm-up
+//! cargo run --release --example bench -- --quick  # 3 runs, counts up to 300
+//! cargo run --release --example bench -- --runs 11 --warmup 2
+//! ```
+
+use std::hint::black_box;
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use kurbo::{PathEl, Point};
+use moyo::output::{render_png, to_svg, write_number};
+use moyo::project::{build_scene, render, svg_options};
+use moyo::spec::{Format, SceneSpec};
+use moyo::templates;
+
+/// The CLI's default preview resolution.
+const PNG_DPI: f64 = 150.0;
+
+/// Preview resolution of the tree-count scaling scenes: their 4000 × 1000 mm
+/// page at 25 dpi is 3937 × 984 px, about the pixel count of A3 at 150 dpi.
+const SCALING_DPI: f64 = 25.0;
+
+/// How the bench is run.
+struct Config {
+    runs: usize,
+    warmup: usize,
+    counts: Vec<u32>,
+    override_counts: Vec<u32>,
+}
+
+impl Config {
+    fn from_args() -> Result<Config, String> {
+        let mut c = Config {
+            runs: 5,
+            warmup: 1,
+            counts: vec![10, 30, 100, 300, 1000],
+            override_counts: vec![100, 300, 1000, 3000, 10_000],
+        };
+        let mut args = std::env::args().skip(1);
+        while let Some(arg) = args.next() {
+            match arg.as_str() {
+                "--quick" => {
+                    c.runs = 3;
+                    c.counts = vec![10, 30, 100, 300];
+                    c.override_counts = vec![100, 300, 1000, 3000];
+                }
+                "--runs" => c.runs = number(&arg, args.next())?,
+                "--warmup" => c.warmup = number(&arg, args.next())?,
+                "-h" | "--help" => {
+                    return Err("usage: cargo run --release --example bench -- \
+                         [--quick] [--runs N] [--warmup N]"
+                        .into())
+                }
+                other => return Err(format!("unknown argument '{other}' (try --help)")),
+            }
+        }
+        if c.runs == 0 {
+            return Err("--runs must be at least 1".into());
+        }
+        Ok(c)
+    }
+}
+
+fn number(flag: &str, value: Option<String>) -> Result<usize, String> {
+    value
+        .as_deref()
+        .and_then(|v| v.parse().ok())
+        .ok_or_else(|| format!("{flag} needs a whole number"))
+}
+
+/// Median, min and max of the timed runs.
+#[derive(Clone, Copy)]
+struct Timing {
+    median: Duration,
+    min: Duration,
+    max: Duration,
+}
+
+/// Runs `f` `warmup` times untimed, then `runs` times timed; returns the
+/// timing and the result of the last run.
+fn measure<T>(cfg: &Config, mut f: impl FnMut() -> T) -> (Timing, T) {
+    for _ in 0..cfg.warmup {
+        black_box(f());
+    }
+    let mut times = Vec::with_capacity(cfg.runs);
+    let mut last = None;
+    for _ in 0..cfg.runs {
+        let start = Instant::now();
+        let out = black_box(f());
+        times.push(start.elapsed());
+        last = Some(out);
+    }
+    times.sort();
+    let n = times.len();
+    // Even counts: the mean of the middle two.
+    let median = if n % 2 == 1 {
+        times[n / 2]
+    } else {
+        (times[n / 2 - 1] + times[n / 2]) / 2
+    };
+    let timing = Timing {
+        median,
+        min: times[0],
+        max: times[n - 1],
+    };
+    (timing, last.expect("runs >= 1"))
+}
+
+fn ms(d: Duration) -> String {
+    let v = d.as_secs_f64() * 1e3;
+    if v >= 100.0 {
+        format!("{v:.0}")
+    } else if v >= 10.0 {
+        format!("{v:.1}")
+    } else if v >= 1.0 {
+        format!("{v:.2}")
+    } else {
+        format!("{v:.3}")
+    }
+}
+
+fn us(v: f64) -> String {
+    if v >= 100.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.1}")
+    }
+}
+
+/// Thousands separated by commas.
+fn grouped(n: usize) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+fn default_design(cfg: &Config) -> Result<(), moyo::Error> {
+    let template = templates::get(templates::DEFAULT)?;
+    let (t_parse, spec) = measure(cfg, || template.spec().expect("template parses"));
+    let (t_scene, scene) = measure(cfg, || build_scene(&spec).expect("scene builds"));
+    let options = svg_options(&spec);
+    let (t_svg, svg) = measure(cfg, || to_svg(&scene, &options));
+    let (t_png, png) = measure(cfg, || render_png(&svg, PNG_DPI).expect("PNG renders"));
+    let (t_total, _) = measure(cfg, || {
+        let spec = template.spec().expect("template parses");
+        let rendered = render(&spec).expect("render succeeds");
+        let png = rendered.png(PNG_DPI).expect("PNG renders");
+        (rendered, png)
+    });
+
+    // Attribution, not part of the pipeline: the coordinates of every path
+    // through the SVG writer's number formatter alone, and a PNG of an empty
+    // page of the same size (allocation, fill and encoding, no paths).
+    let mut coords = Vec::new();
+    scene.visit_paths(|_, p, _| {
+        for el in p.path.elements() {
+            let pts: &[Point] = match el {
+                PathEl::MoveTo(a) | PathEl::LineTo(a) => std::slice::from_ref(a),
+                PathEl::QuadTo(a, b) => &[*a, *b],
+                PathEl::CurveTo(a, b, c) => &[*a, *b, *c],
+                PathEl::ClosePath => &[],
+            };
+            for q in pts {
+                coords.extend([q.x, q.y]);
+            }
+        }
+    });
+    let (t_numbers, _) = measure(cfg, || {
+        let mut out = String::with_capacity(coords.len() * 8);
+        for &v in &coords {
+            write_number(&mut out, v, spec.output.precision);
+            out.push(' ');
+        }
+        out
+    });
+    let blank = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}mm\" height=\"{h}mm\" \
+         viewBox=\"0 0 {w} {h}\"/>",
+        w = scene.page.width,
+        h = scene.page.height
+    );
+    let (t_blank, _) = measure(cfg, || render_png(&blank, PNG_DPI).expect("PNG renders"));
+
+    let stats = scene.stats();
+    println!(
+        "### Default design `{}` ({} runs, {} warm-up)\n",
+        template.name, cfg.runs, cfg.warmup
+    );
+    println!(
+        "{} paths, {:.0} mm pen-down, SVG {} bytes, PNG {} bytes at {PNG_DPI} dpi.\n",
+        grouped(stats.paths),
+        stats.pen_down_mm,
+        grouped(svg.len()),
+        grouped(png.len())
+    );
+    println!("| stage | median ms | min ms | max ms | share of stages |");
+    println!("|---|---:|---:|---:|---:|");
+    let stages = [
+        ("parse + validate description", t_parse),
+        ("build scene", t_scene),
+        ("write SVG string", t_svg),
+        ("PNG at 150 dpi (usvg parse + raster + encode)", t_png),
+    ];
+    let sum: f64 = stages.iter().map(|(_, t)| t.median.as_secs_f64()).sum();
+    let row = |name: &str, t: Timing, share: String| {
+        println!(
+            "| {name} | {} | {} | {} | {share} |",
+            ms(t.median),
+            ms(t.min),
+            ms(t.max)
+        );
+    };
+    for (name, t) in stages {
+        row(
+            name,
+            t,
+            format!("{:.1} %", 100.0 * t.median.as_secs_f64() / sum),
+        );
+    }
+    row(
+        "**total**, measured as one chain (parse → scene → SVG → PNG)",
+        t_total,
+        String::new(),
+    );
+    row(
+        &format!(
+            "for comparison: `write_number` alone on the {} path coordinates",
+            grouped(coords.len())
+        ),
+        t_numbers,
+        String::new(),
+    );
+    row(
+        &format!(
+            "for comparison: PNG of an empty {} × {} mm page at 150 dpi",
+            scene.page.width, scene.page.height
+        ),
+        t_blank,
+        String::new(),
+    );
+    println!();
+    Ok(())
+}
+
+/// One layer, one `tree1` set of `count` trees along a horizontal line.
+fn row_of_trees(count: u32, style: &str) -> String {
+    format!(
+        r#"version = 1
+title = "bench: {count} trees, {style}"
+seed = 1
+
+[page]
+size = [4000, 1000]
+orientation = "landscape"
+margin = 10
+
+[limits]
+max_paths = 1000000
+
+[[layers]]
+name = "row"
+
+[layers.limbs]
+style = "{style}"
+
+[[layers.trees]]
+id = "row"
+rule = "tree1"
+count = {count}
+centre = [[10, 900], [3970, 900]]
+
+[layers.trees.params]
+generations = 6
+"#
+    )
+}
+
+/// Local growth exponent of `t` from `(n0, t0)` to `(n1, t1)`.
+fn exponent(n0: u32, t0: Duration, n1: u32, t1: Duration) -> f64 {
+    (t1.as_secs_f64() / t0.as_secs_f64()).ln() / (f64::from(n1) / f64::from(n0)).ln()
+}
+
+fn scaling(cfg: &Config, style: &str) -> Result<(), moyo::Error> {
+    println!(
+        "### Tree count scaling, `tree1`, generations 6, limbs `{style}` ({} runs, {} warm-up)\n",
+        cfg.runs, cfg.warmup
+    );
+    println!(
+        "| trees | paths | SVG bytes | scene ms | SVG ms | PNG ms at {SCALING_DPI} dpi \
+         | scene µs/tree | SVG µs/tree | k scene | k SVG | k PNG |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut prev: Option<(u32, [Duration; 3])> = None;
+    for &count in &cfg.counts {
+        let spec = SceneSpec::parse(&row_of_trees(count, style), Format::Toml)?;
+        let (t_scene, scene) = measure(cfg, || build_scene(&spec).expect("scene builds"));
+        let options = svg_options(&spec);
+        let (t_svg, svg) = measure(cfg, || to_svg(&scene, &options));
+        let (t_png, _) = measure(cfg, || render_png(&svg, SCALING_DPI).expect("PNG renders"));
+        let now = [t_scene.median, t_svg.median, t_png.median];
+        let per_tree = |t: Duration| us(t.as_secs_f64() * 1e6 / f64::from(count));
+        let k = |i: usize| match prev {
+            Some((n0, before)) => format!("{:.2}", exponent(n0, before[i], count, now[i])),
+            None => "–".into(),
+        };
+        println!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            grouped(count as usize),
+            grouped(scene.path_count()),
+            grouped(svg.len()),
+            ms(t_scene.median),
+            ms(t_svg.median),
+            ms(t_png.median),
+            per_tree(t_scene.median),
+            per_tree(t_svg.median),
+            k(0),
+            k(1),
+            k(2),
+        );
+        prev = Some((count, now));
+    }
+    println!();
+    Ok(())
+}
+
+/// One set of `count` small trees (`tree2`, 2 generations, stroke limbs),
+/// each tree with an override when `overridden`.
+fn overridden_trees(count: u32, overridden: bool) -> String {
+    let mut s = format!(
+        r#"version = 1
+seed = 1
+
+[page]
+size = [4000, 1000]
+orientation = "landscape"
+margin = 10
+
+[limits]
+max_paths = 1000000
+
+[[layers]]
+name = "row"
+
+[layers.limbs]
+style = "stroke"
+
+[[layers.trees]]
+id = "row"
+rule = "tree2"
+count = {count}
+centre = [[10, 900], [3970, 900]]
+
+[layers.trees.params]
+generations = 2
+"#
+    );
+    if overridden {
+        for i in 0..count {
+            s.push_str(&format!(
+                "\n[[layers.trees.overrides]]\nid = \"tree-{i}\"\nscale = 1.0\n"
+            ));
+        }
+    }
+    s
+}
+
+/// Tree sets where every tree has an override: the lookup of a tree's
+/// override is a linear search of the set's override list.
+fn overrides(cfg: &Config) -> Result<(), moyo::Error> {
+    println!(
+        "### Per-tree overrides, `tree2`, generations 2, `stroke` ({} runs, {} warm-up)\n",
+        cfg.runs, cfg.warmup
+    );
+    println!(
+        "| trees | paths | scene ms, no overrides | scene ms, every tree overridden \
+         | µs/tree, no overrides | µs/tree, overridden | k, no overrides | k, overridden |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut prev: Option<(u32, [Duration; 2])> = None;
+    for &count in &cfg.override_counts {
+        let plain = SceneSpec::parse(&overridden_trees(count, false), Format::Toml)?;
+        let every = SceneSpec::parse(&overridden_trees(count, true), Format::Toml)?;
+        let (t_plain, scene) = measure(cfg, || build_scene(&plain).expect("scene builds"));
+        let (t_every, _) = measure(cfg, || build_scene(&every).expect("scene builds"));
+        let now = [t_plain.median, t_every.median];
+        let per_tree = |t: Duration| us(t.as_secs_f64() * 1e6 / f64::from(count));
+        let k = |i: usize| match prev {
+            Some((n0, before)) => format!("{:.2}", exponent(n0, before[i], count, now[i])),
+            None => "–".into(),
+        };
+        println!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            grouped(count as usize),
+            grouped(scene.path_count()),
+            ms(t_plain.median),
+            ms(t_every.median),
+            per_tree(t_plain.median),
+            per_tree(t_every.median),
+            k(0),
+            k(1),
+        );
+        prev = Some((count, now));
+    }
+    println!();
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cfg = match Config::from_args() {
+        Ok(c) => c,
+        Err(msg) => {
+            eprintln!("{msg}");
+            return ExitCode::from(2);
+        }
+    };
+    if cfg!(debug_assertions) {
+        eprintln!("warning: debug build; run with --release for meaningful figures");
+    }
+    let result = default_design(&cfg)
+        .and_then(|()| scaling(&cfg, "outline"))
+        .and_then(|()| scaling(&cfg, "stroke"))
+        .and_then(|()| overrides(&cfg));
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

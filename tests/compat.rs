@@ -1,0 +1,75 @@
+//! Other tools read moyo's SVG: vpype must see one layer per pen, with the
+//! pen's name, colour and width, and every path.
+//!
+//! Runs when `MOYO_VPYPE` names a vpype executable (`.ci/run` installs one
+//! in a virtual environment). Without it the test says so and passes,
+//! unless `CI` is set, where a missing vpype is a failure.
+
+use std::process::Command;
+
+#[test]
+fn vpype_reads_one_layer_per_pen_with_every_path() {
+    let Some(vpype) = std::env::var_os("MOYO_VPYPE") else {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "MOYO_VPYPE is not set in CI; .ci/run installs vpype"
+        );
+        eprintln!("skipped: set MOYO_VPYPE to a vpype executable to run this test");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("hem.svg");
+    let spec = moyo::templates::get(moyo::templates::DEFAULT)
+        .unwrap()
+        .spec()
+        .unwrap();
+    let rendered = moyo::project::render(&spec).unwrap();
+    std::fs::write(&svg, &rendered.svg).unwrap();
+
+    let out = Command::new(vpype)
+        .arg("read")
+        .arg(&svg)
+        .arg("stat")
+        .output()
+        .expect("vpype runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stat = String::from_utf8_lossy(&out.stdout);
+
+    let mut total = 0;
+    for pen in &rendered.scene.pens {
+        let section = stat
+            .split(&format!("Layer {}\n", pen.number))
+            .nth(1)
+            .unwrap_or_else(|| panic!("vpype shows no layer {}:\n{stat}", pen.number));
+        let section = section.split("\nLayer ").next().unwrap();
+        assert!(
+            section.contains(&format!("vp_name: '{} {}'", pen.number, pen.name)),
+            "{section}"
+        );
+        assert!(
+            section.contains(&format!("svg_stroke: '{}'", pen.color)),
+            "{section}"
+        );
+        let count: usize = section
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("Path count: "))
+            .expect("path count")
+            .parse()
+            .unwrap();
+        assert_eq!(count, rendered.scene.pen_stats(pen.number).paths);
+        total += count;
+        // vpype's pen width is in CSS px (96 per inch).
+        let width: f64 = section
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("vp_pen_width: "))
+            .expect("pen width")
+            .parse()
+            .unwrap();
+        assert!((width * 25.4 / 96.0 - pen.width).abs() < 1e-6, "{width}");
+    }
+    assert_eq!(total, rendered.scene.path_count());
+}
