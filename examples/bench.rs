@@ -6,7 +6,8 @@
 //! 1. **Default design** (`templates::get(templates::DEFAULT)`): parsing the
 //!    description, building the scene, writing the SVG string, rendering the
 //!    PNG preview at 150 dpi (the CLI default), and the whole chain end to
-//!    end.
+//!    end; for attribution also `write_number` alone on every path
+//!    coordinate, and the PNG of an empty page of the same size.
 //! 2. **Scaling with tree count**: a scene written in code — one layer, one
 //!    tree set of rule `tree1`, `generations = 6`, along a straight
 //!    horizontal centre line on a 4000 × 1000 mm page without region lines —
@@ -14,7 +15,10 @@
 //!    once with `stroke` limbs. Reports scene-build time, SVG time, paths,
 //!    SVG bytes, time per tree, and the local growth exponent
 //!    `k = ln(t₂/t₁) / ln(n₂/n₁)` against the previous row (1 is linear,
-//!    2 quadratic).
+//!    2 quadratic); also the PNG at 25 dpi.
+//! 3. **Per-tree overrides**: scene-build time of 100 … 10,000 small trees
+//!    (`tree2`, 2 generations, `stroke`) without overrides and with one
+//!    override per tree, plus the parse time of the latter.
 //!
 //! Everything goes to standard output as Markdown tables, ready to paste into
 //! `BENCHMARKS.md`.
@@ -25,7 +29,12 @@
 //! cargo run --release --example bench             # 5 runs, 1 warm-up
 //! cargo run --release --example bench -- --quick  # 3 runs, counts up to 300
 //! cargo run --release --example bench -- --runs 11 --warmup 2
+//! cargo run --release --example bench -- --only outline --counts 300,1000,3000
 //! ```
+//!
+//! `--only` (repeatable) picks sections: `default`, `outline`, `stroke`,
+//! `overrides`. `--counts` and `--override-counts` replace the tree counts of
+//! the scaling and override sections.
 
 use std::hint::black_box;
 use std::process::ExitCode;
@@ -50,6 +59,8 @@ struct Config {
     warmup: usize,
     counts: Vec<u32>,
     override_counts: Vec<u32>,
+    /// Sections to run; empty means all.
+    only: Vec<String>,
 }
 
 impl Config {
@@ -59,6 +70,7 @@ impl Config {
             warmup: 1,
             counts: vec![10, 30, 100, 300, 1000],
             override_counts: vec![100, 300, 1000, 3000, 10_000],
+            only: Vec::new(),
         };
         let mut args = std::env::args().skip(1);
         while let Some(arg) = args.next() {
@@ -70,12 +82,17 @@ impl Config {
                 }
                 "--runs" => c.runs = number(&arg, args.next())?,
                 "--warmup" => c.warmup = number(&arg, args.next())?,
+                "--counts" => c.counts = list(&arg, args.next())?,
+                "--override-counts" => c.override_counts = list(&arg, args.next())?,
+                "--only" => match args.next() {
+                    Some(s) if SECTIONS.contains(&s.as_str()) => c.only.push(s),
+                    _ => return Err(format!("--only needs one of {}", SECTIONS.join(", "))),
+                },
                 "-h" | "--help" => {
-                    return Err("usage: cargo run --release --example bench -- \
-                         [--quick] [--runs N] [--warmup N]"
-                        .into())
+                    println!("{USAGE}");
+                    std::process::exit(0);
                 }
-                other => return Err(format!("unknown argument '{other}' (try --help)")),
+                other => return Err(format!("unknown argument '{other}'\n{USAGE}")),
             }
         }
         if c.runs == 0 {
@@ -83,6 +100,33 @@ impl Config {
         }
         Ok(c)
     }
+}
+
+const USAGE: &str = "usage: cargo run --release --example bench -- [--quick] \
+    [--runs N] [--warmup N] [--counts N,N,…] [--override-counts N,N,…] \
+    [--only default|outline|stroke|overrides]…";
+
+/// The sections of the report, in order.
+const SECTIONS: [&str; 4] = ["default", "outline", "stroke", "overrides"];
+
+impl Config {
+    fn runs_section(&self, name: &str) -> bool {
+        self.only.is_empty() || self.only.iter().any(|s| s == name)
+    }
+}
+
+fn list(flag: &str, value: Option<String>) -> Result<Vec<u32>, String> {
+    let bad = || format!("{flag} needs a comma-separated list of tree counts ≥ 1");
+    let v = value.ok_or_else(bad)?;
+    let counts: Vec<u32> = v
+        .split(',')
+        .map(|n| n.trim().parse().ok().filter(|n| *n >= 1))
+        .collect::<Option<_>>()
+        .ok_or_else(bad)?;
+    if counts.is_empty() {
+        return Err(bad());
+    }
+    Ok(counts)
 }
 
 fn number(flag: &str, value: Option<String>) -> Result<usize, String> {
@@ -403,13 +447,18 @@ fn overrides(cfg: &Config) -> Result<(), moyo::Error> {
     );
     println!(
         "| trees | paths | scene ms, no overrides | scene ms, every tree overridden \
-         | µs/tree, no overrides | µs/tree, overridden | k, no overrides | k, overridden |"
+         | µs/tree, no overrides | µs/tree, overridden | k, no overrides | k, overridden \
+         | parse + validate ms, overridden |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut prev: Option<(u32, [Duration; 2])> = None;
     for &count in &cfg.override_counts {
         let plain = SceneSpec::parse(&overridden_trees(count, false), Format::Toml)?;
-        let every = SceneSpec::parse(&overridden_trees(count, true), Format::Toml)?;
+        let every_text = overridden_trees(count, true);
+        let every = SceneSpec::parse(&every_text, Format::Toml)?;
+        let (t_parse, _) = measure(cfg, || {
+            SceneSpec::parse(&every_text, Format::Toml).expect("description parses")
+        });
         let (t_plain, scene) = measure(cfg, || build_scene(&plain).expect("scene builds"));
         let (t_every, _) = measure(cfg, || build_scene(&every).expect("scene builds"));
         let now = [t_plain.median, t_every.median];
@@ -419,7 +468,7 @@ fn overrides(cfg: &Config) -> Result<(), moyo::Error> {
             None => "–".into(),
         };
         println!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             grouped(count as usize),
             grouped(scene.path_count()),
             ms(t_plain.median),
@@ -428,6 +477,7 @@ fn overrides(cfg: &Config) -> Result<(), moyo::Error> {
             per_tree(t_every.median),
             k(0),
             k(1),
+            ms(t_parse.median),
         );
         prev = Some((count, now));
     }
@@ -446,10 +496,20 @@ fn main() -> ExitCode {
     if cfg!(debug_assertions) {
         eprintln!("warning: debug build; run with --release for meaningful figures");
     }
-    let result = default_design(&cfg)
-        .and_then(|()| scaling(&cfg, "outline"))
-        .and_then(|()| scaling(&cfg, "stroke"))
-        .and_then(|()| overrides(&cfg));
+    let result = (|| {
+        if cfg.runs_section("default") {
+            default_design(&cfg)?;
+        }
+        for style in ["outline", "stroke"] {
+            if cfg.runs_section(style) {
+                scaling(&cfg, style)?;
+            }
+        }
+        if cfg.runs_section("overrides") {
+            overrides(&cfg)?;
+        }
+        Ok::<(), moyo::Error>(())
+    })();
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -87,9 +87,10 @@ pub struct PageSpec {
     /// A named size or `[width, height]` in mm.
     #[serde(default = "default_paper")]
     pub size: PaperSize,
-    /// `portrait` or `landscape`.
-    #[serde(default)]
-    pub orientation: Orientation,
+    /// `portrait` or `landscape`. Default: portrait for named sizes; an
+    /// explicit `[width, height]` is taken as written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<Orientation>,
     /// One margin for all sides, or `[top, right, bottom, left]`, in mm.
     #[serde(default = "default_margin")]
     pub margin: MarginSpec,
@@ -99,7 +100,7 @@ impl Default for PageSpec {
     fn default() -> Self {
         PageSpec {
             size: default_paper(),
-            orientation: Orientation::default(),
+            orientation: None,
             margin: default_margin(),
         }
     }
@@ -152,8 +153,15 @@ impl PageSpec {
             },
         };
         match self.size {
-            PaperSize::Named(n) => Page::named(n, self.orientation, margins),
-            PaperSize::Custom([w, h]) => Page::sized(w, h, self.orientation, margins),
+            PaperSize::Named(n) => Page::named(n, self.orientation.unwrap_or_default(), margins),
+            PaperSize::Custom([w, h]) => match self.orientation {
+                Some(o) => Page::sized(w, h, o, margins),
+                None => Page {
+                    width: w,
+                    height: h,
+                    margins,
+                },
+            },
         }
     }
 }

@@ -118,3 +118,14 @@ fn version_is_checked() {
     let msg = parse("version = 2").unwrap_err().to_string();
     assert!(msg.contains("unsupported format version 2"), "{msg}");
 }
+
+#[test]
+fn custom_size_keeps_its_sides_unless_an_orientation_is_given() {
+    let wide = parse("version = 1\npage = { size = [400, 100] }").unwrap();
+    assert_eq!((wide.page().width, wide.page().height), (400.0, 100.0));
+    let turned =
+        parse("version = 1\npage = { size = [400, 100], orientation = \"portrait\" }").unwrap();
+    assert_eq!((turned.page().width, turned.page().height), (100.0, 400.0));
+    let a4 = parse("version = 1\npage = { size = \"A4\" }").unwrap();
+    assert_eq!((a4.page().width, a4.page().height), (210.0, 297.0));
+}

@@ -15,7 +15,9 @@ use crate::geom::{natural_spline, PathWalker, Side, SideTest, TOLERANCE};
 use crate::motif::tree::{self, Growth, LimbLook};
 use crate::rng::Seed;
 use crate::scene::{Color, Group, PathBudget, Style};
-use crate::spec::{Growth as Orientation, LimbSpec, Points, RegionLinesSpec, TreeSetSpec};
+use crate::spec::{
+    Growth as Orientation, LimbSpec, Points, RegionLinesSpec, TreeOverride, TreeSetSpec,
+};
 
 /// The overall flow: what stops trees from growing.
 pub struct Flow {
@@ -74,12 +76,30 @@ fn turn(v: Vec2, deg: f64) -> Vec2 {
     Vec2::new(v.x * c - v.y * s, v.x * s + v.y * c)
 }
 
+/// The override of each tree of a set, indexed by tree number: one pass
+/// over the overrides, so lookups stay O(1) however many there are.
+/// Validation guarantees ids are unique `tree-N` with `N < count`.
+fn overrides_by_tree(set: &TreeSetSpec) -> Vec<Option<&TreeOverride>> {
+    let mut by_tree = vec![None; set.count as usize];
+    for o in &set.overrides {
+        let n =
+            o.id.strip_prefix("tree-")
+                .and_then(|n| n.parse::<usize>().ok());
+        if let Some(slot) = n.and_then(|n| by_tree.get_mut(n)) {
+            *slot = Some(o);
+        }
+    }
+    by_tree
+}
+
 /// The placements of a set's trees, overrides applied.
 pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
     let walker = PathWalker::new(&flow_line(&set.centre), TOLERANCE);
     let n = set.count as usize;
-    (0..n)
-        .map(|i| {
+    overrides_by_tree(set)
+        .into_iter()
+        .enumerate()
+        .map(|(i, o)| {
             let s = walker.length() * (i as f64 + 0.5) / n as f64;
             let tangent = walker.tangent_at(s);
             let base = match set.growth {
@@ -93,8 +113,6 @@ pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
                 }
                 Orientation::Parallel => tangent,
             };
-            let id = format!("tree-{i}");
-            let o = set.overrides.iter().find(|o| o.id == id);
             let rotate = set.rotate + o.and_then(|o| o.rotate).unwrap_or(0.0);
             Placement {
                 root: o
@@ -125,9 +143,10 @@ pub fn tree_set(
     let style = Style {
         fill: limbs.fill.as_deref().and_then(Color::parse),
     };
+    let overrides = overrides_by_tree(set);
     for (i, place) in placements(set).into_iter().enumerate() {
         let tree_id = format!("tree-{i}");
-        let params = match set.overrides.iter().find(|o| o.id == tree_id) {
+        let params = match overrides[i] {
             Some(o) => o.params.over(&set.params),
             None => set.params.clone(),
         };
