@@ -51,6 +51,7 @@ pub mod error;
 pub mod geom;
 pub mod motif;
 pub mod output;
+pub mod plot;
 pub mod project;
 pub mod rng;
 pub mod scene;

@@ -6,6 +6,7 @@
 use crate::error::Result;
 use crate::motif::kimono::{self, Flow};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
+use crate::plot;
 use crate::rng::Seed;
 use crate::scene::{Color, Group, Layer, PathBudget, Pen, Scene};
 use crate::spec::SceneSpec;
@@ -130,7 +131,8 @@ pub struct Rendered {
     pub svg: String,
 }
 
-/// Builds the scene and writes its SVG.
+/// Builds the scene, runs the plot stages the description asks for and
+/// writes its SVG.
 pub fn render(spec: &SceneSpec) -> Result<Rendered> {
     render_with_progress(spec, &mut |_| {})
 }
@@ -140,7 +142,7 @@ pub fn render_with_progress(
     spec: &SceneSpec,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Rendered> {
-    let scene = build_scene_with_progress(spec, progress)?;
+    let scene = plot::run(build_scene_with_progress(spec, progress)?, &spec.plot)?;
     let svg = to_svg(&scene, &svg_options(spec));
     Ok(Rendered { scene, svg })
 }

@@ -9,6 +9,8 @@ use std::time::{Duration, Instant};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+mod plot;
+
 use moyo::output::write_atomic;
 use moyo::project::{self, Progress};
 use moyo::spec::{Format, SceneSpec};
@@ -30,6 +32,13 @@ enum Command {
     Render(RenderArgs),
     /// List the built-in templates with a one-line description each.
     Templates,
+    /// Run the plot pipeline on any SVG and write SVG, G-code or HPGL.
+    ///
+    /// Stages run in a fixed order: transform, occlude, hatch, then per pen
+    /// merge, simplify, sort, multipass. Only the stages asked for run.
+    Plot(plot::PlotArgs),
+    /// Path count, pen-down and pen-up length and plot time of an SVG.
+    Stats(plot::StatsArgs),
     /// Print a template's scene description to start a design from.
     New {
         /// Template name (see `moyo templates`).
@@ -68,7 +77,7 @@ struct RenderArgs {
 }
 
 /// Rejects a bad `--dpi` while parsing, whether or not `--png` is given.
-fn parse_dpi(s: &str) -> Result<f64, String> {
+pub(crate) fn parse_dpi(s: &str) -> Result<f64, String> {
     let dpi: f64 = s.parse().map_err(|e| format!("{e}"))?;
     moyo::output::check_dpi(dpi).map_err(|e| e.to_string())?;
     Ok(dpi)
@@ -80,6 +89,8 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render(&args),
         Command::Templates => list_templates(),
+        Command::Plot(args) => plot::plot(&args),
+        Command::Stats(args) => plot::stats(&args),
         Command::New { name, output } => new(&name, output.as_deref()),
     };
     match result {
@@ -92,7 +103,7 @@ pub fn run() -> ExitCode {
     }
 }
 
-enum CliError {
+pub(crate) enum CliError {
     /// The reader of standard output went away: not an error for a filter.
     BrokenPipe,
     Message(String),
@@ -104,7 +115,7 @@ impl From<moyo::Error> for CliError {
     }
 }
 
-fn stdout_error(e: std::io::Error) -> CliError {
+pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
     if e.kind() == std::io::ErrorKind::BrokenPipe {
         CliError::BrokenPipe
     } else {
@@ -179,7 +190,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
 }
 
 /// Plotters clip or crash at the page edge; say so before the plot does.
-fn warn_outside_page(scene: &moyo::Scene) {
+pub(crate) fn warn_outside_page(scene: &moyo::Scene) {
     let Some(b) = scene.bounds() else { return };
     let area = scene.page.drawable();
     let slack = 0.01;

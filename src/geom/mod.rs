@@ -6,6 +6,12 @@
 //! along a direction on the page: for a direction pointing up the page, left
 //! is towards smaller x.
 
+pub mod clip;
+pub mod ffd;
+pub mod offset;
+pub mod polylabel;
+pub mod region;
+
 mod bow;
 mod side;
 mod spline;

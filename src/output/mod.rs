@@ -9,6 +9,10 @@
 //! - [`write_atomic`]: puts any of these on disk without half-written files;
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
+pub mod gcode;
+pub mod hpgl;
+pub mod import;
+
 mod atomic;
 mod dump;
 mod number;

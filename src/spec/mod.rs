@@ -19,6 +19,7 @@ pub use validate::MAX_COORD;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, LineCol, Result};
+use crate::plot::PlotOptions;
 use crate::units::{Margins, Orientation, Page, PaperName};
 
 /// The newest file format version this build reads and writes.
@@ -78,6 +79,11 @@ pub struct SceneSpec {
     /// otherwise.
     #[serde(default)]
     pub layers: Vec<LayerSpec>,
+    /// Plot pipeline stages applied before writing (none by default). The
+    /// option types are the plot stages' own, so the file and the library
+    /// cannot drift apart.
+    #[serde(default, skip_serializing_if = "PlotOptions::is_empty")]
+    pub plot: PlotOptions,
 }
 
 /// Paper size, orientation and margins.

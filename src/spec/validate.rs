@@ -146,6 +146,8 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
         points("lines.lower", lower, 2)?;
     }
 
+    s.plot.validate("plot")?;
+
     let mut names = BTreeSet::new();
     for (i, layer) in s.layers.iter().enumerate() {
         let f = format!("layers[{i}]");

@@ -1,0 +1,436 @@
+//! `moyo plot` and `moyo stats`: the plot pipeline on any SVG.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use clap::{Args, ValueEnum};
+use kurbo::{BezPath, Point};
+
+use super::{stdout_error, warn_outside_page, CliError};
+use moyo::output::gcode::{to_gcode, GcodeOptions, Origin};
+use moyo::output::hpgl::{to_hpgl, CutterOptions, HpglOptions};
+use moyo::output::import::{import_svg, ImportOptions};
+use moyo::output::{render_png, to_svg, write_atomic, SvgOptions};
+use moyo::plot::{
+    self, HatchOptions, MergeOptions, MultipassOptions, OccludeOptions, PlotOptions,
+    SimplifyOptions, SortOptions, Speeds, TransformOptions,
+};
+use moyo::{Color, Group, Layer, Pen, Scene, Style};
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum OutputFormat {
+    Svg,
+    Gcode,
+    Hpgl,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum OriginArg {
+    BottomLeft,
+    TopLeft,
+}
+
+#[derive(Args)]
+pub(crate) struct PlotArgs {
+    /// The SVG to plot (Inkscape layers, or stroke colours, become pens).
+    input: PathBuf,
+    /// Output file.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Output format; by default from the output's extension (.gcode, .nc,
+    /// .ngc → gcode; .hpgl, .plt → hpgl; otherwise svg).
+    #[arg(long, value_enum)]
+    format: Option<OutputFormat>,
+
+    /// Remove strokes hidden behind closed shapes in front.
+    #[arg(long, help_heading = "Stages")]
+    occlude: bool,
+    /// With --occlude: merge each group of closed shapes (a tree) into one
+    /// silhouette first.
+    #[arg(long, requires = "occlude", help_heading = "Stages")]
+    silhouettes: bool,
+    /// Hatch fills with lines this far apart (mm).
+    #[arg(long, value_name = "SPACING", help_heading = "Stages")]
+    hatch: Option<f64>,
+    /// Hatch angle in degrees.
+    #[arg(long, default_value_t = 45.0, requires = "hatch", help_heading = "Stages")]
+    hatch_angle: f64,
+    /// Cross-hatch (a second set of lines at 90°).
+    #[arg(long, requires = "hatch", help_heading = "Stages")]
+    cross: bool,
+    /// Keep hatch lines this far inside the outline (mm).
+    #[arg(long, default_value_t = 0.0, requires = "hatch", help_heading = "Stages")]
+    hatch_inset: f64,
+    /// Join paths whose ends are within TOL mm (default 0.05).
+    #[arg(long, value_name = "TOL", num_args = 0..=1, default_missing_value = "0.05", help_heading = "Stages")]
+    merge: Option<f64>,
+    /// Order paths to shorten pen-up travel.
+    #[arg(long, help_heading = "Stages")]
+    sort: bool,
+    /// Drop points within TOL mm.
+    #[arg(long, value_name = "TOL", help_heading = "Stages")]
+    simplify: Option<f64>,
+    /// Draw every path N times (1–100).
+    #[arg(long, value_name = "N", help_heading = "Stages")]
+    multipass: Option<u32>,
+    /// Scale the drawing to fit inside the page margins (mm, default 10).
+    #[arg(long, help_heading = "Transform")]
+    fit: bool,
+    /// Margin for --fit, mm.
+    #[arg(long, value_name = "MM", requires = "fit", help_heading = "Transform")]
+    fit_margin: Option<f64>,
+    /// Centre the drawing on the page.
+    #[arg(long, help_heading = "Transform")]
+    centre: bool,
+    /// Scale the drawing about the page centre.
+    #[arg(long, default_value_t = 1.0, help_heading = "Transform")]
+    scale: f64,
+    /// Rotate the drawing about the page centre, degrees clockwise.
+    #[arg(long, default_value_t = 0.0, help_heading = "Transform")]
+    rotate: f64,
+
+    /// Decimals in SVG output (0–8).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
+    precision: u8,
+    /// Also write a PNG preview of the result.
+    #[arg(long, help_heading = "Output")]
+    png: Option<PathBuf>,
+    /// Resolution of the PNG preview (1–2400).
+    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
+    dpi: f64,
+    /// Draw pen-up travel in red on the PNG preview (not in the output).
+    #[arg(long, requires = "png", help_heading = "Output")]
+    show_travel: bool,
+
+    /// G-code: command that lifts the pen.
+    #[arg(long, default_value = "M5", help_heading = "G-code")]
+    pen_up: String,
+    /// G-code: command that lowers the pen.
+    #[arg(long, default_value = "M3 S1000", help_heading = "G-code")]
+    pen_down: String,
+    /// G-code: pause after each pen move, seconds.
+    #[arg(long, default_value_t = 0.15, help_heading = "G-code")]
+    pen_delay: f64,
+    /// G-code: drawing feed rate, mm/min.
+    #[arg(long, default_value_t = 1500.0, help_heading = "G-code")]
+    feed: f64,
+    /// G-code: travel feed rate, mm/min (0: rapid moves, G0).
+    #[arg(long, default_value_t = 4000.0, help_heading = "G-code")]
+    travel_feed: f64,
+    /// G-code: where the machine's origin is on the page.
+    #[arg(long, value_enum, default_value = "bottom-left", help_heading = "G-code")]
+    origin: OriginArg,
+    /// G-code: negate machine Y.
+    #[arg(long, help_heading = "G-code")]
+    flip_y: bool,
+
+    /// HPGL: cutter mode (closed outlines, overcut, drag-knife offset).
+    #[arg(long, help_heading = "HPGL")]
+    cutter: bool,
+    /// HPGL cutter: cut past the start of closed outlines, mm.
+    #[arg(long, default_value_t = 1.0, requires = "cutter", help_heading = "HPGL")]
+    overcut: f64,
+    /// HPGL cutter: drag-knife blade offset, mm.
+    #[arg(long, default_value_t = 0.25, requires = "cutter", help_heading = "HPGL")]
+    knife_offset: f64,
+    /// HPGL: mirror left–right (cutting on the back of the media).
+    #[arg(long, help_heading = "HPGL")]
+    mirror: bool,
+
+    #[command(flatten)]
+    speeds: SpeedArgs,
+}
+
+#[derive(Args)]
+pub(crate) struct SpeedArgs {
+    /// Drawing speed for the time estimate, mm/s.
+    #[arg(long, default_value_t = Speeds::DEFAULT.pen_down_mm_s, help_heading = "Time estimate")]
+    speed_down: f64,
+    /// Travel speed for the time estimate, mm/s.
+    #[arg(long, default_value_t = Speeds::DEFAULT.pen_up_mm_s, help_heading = "Time estimate")]
+    speed_up: f64,
+    /// Time of one pen lift and lowering, s.
+    #[arg(long, default_value_t = Speeds::DEFAULT.pen_lift_s, help_heading = "Time estimate")]
+    lift_time: f64,
+}
+
+impl SpeedArgs {
+    fn speeds(&self) -> Result<Speeds, CliError> {
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(CliError::Message(format!("--{name} must be a positive number, got {v}")))
+            }
+        };
+        positive("speed-down", self.speed_down)?;
+        positive("speed-up", self.speed_up)?;
+        if !(self.lift_time.is_finite() && self.lift_time >= 0.0) {
+            return Err(CliError::Message(format!(
+                "--lift-time must be zero or more, got {}",
+                self.lift_time
+            )));
+        }
+        let mut s = Speeds::DEFAULT;
+        s.pen_down_mm_s = self.speed_down;
+        s.pen_up_mm_s = self.speed_up;
+        s.pen_lift_s = self.lift_time;
+        Ok(s)
+    }
+}
+
+#[derive(Args)]
+pub(crate) struct StatsArgs {
+    /// The SVG to measure.
+    input: PathBuf,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    speeds: SpeedArgs,
+}
+
+fn load_svg(path: &Path) -> Result<Scene, CliError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?;
+    let imported = import_svg(&text, &ImportOptions::DEFAULT)
+        .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?;
+    for w in &imported.warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok(imported.scene)
+}
+
+impl PlotArgs {
+    fn plot_options(&self) -> PlotOptions {
+        let transform = (self.fit || self.centre || self.scale != 1.0 || self.rotate != 0.0)
+            .then(|| {
+                let mut t = TransformOptions::DEFAULT;
+                t.fit = self.fit;
+                t.centre = self.centre;
+                t.scale = self.scale;
+                t.rotate_deg = self.rotate;
+                t.margin = self.fit_margin;
+                t
+            });
+        PlotOptions {
+            transform,
+            occlude: self.occlude.then(|| {
+                let mut o = OccludeOptions::default();
+                o.silhouettes = self.silhouettes;
+                o
+            }),
+            hatch: self.hatch.map(|spacing| {
+                HatchOptions::DEFAULT
+                    .with_spacing(spacing)
+                    .with_angle_deg(self.hatch_angle)
+                    .with_cross(self.cross)
+                    .with_inset(self.hatch_inset)
+            }),
+            merge: self.merge.map(|tolerance| {
+                let mut m = MergeOptions::DEFAULT;
+                m.tolerance = tolerance;
+                m
+            }),
+            simplify: self.simplify.map(|tolerance| {
+                let mut s = SimplifyOptions::DEFAULT;
+                s.tolerance = tolerance;
+                s
+            }),
+            sort: self.sort.then_some(SortOptions::DEFAULT),
+            multipass: self.multipass.map(|passes| {
+                let mut m = MultipassOptions::DEFAULT;
+                m.passes = passes;
+                m
+            }),
+        }
+    }
+
+    fn format(&self) -> OutputFormat {
+        self.format.unwrap_or_else(|| {
+            let ext = self
+                .output
+                .extension()
+                .and_then(|e| e.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase();
+            match ext.as_str() {
+                "gcode" | "nc" | "ngc" | "g" => OutputFormat::Gcode,
+                "hpgl" | "plt" | "hgl" => OutputFormat::Hpgl,
+                _ => OutputFormat::Svg,
+            }
+        })
+    }
+
+    fn gcode_options(&self) -> GcodeOptions {
+        GcodeOptions::default()
+            .with_pen_commands(self.pen_up.clone(), self.pen_down.clone())
+            .with_pen_delay_s(self.pen_delay)
+            .with_feed_down_mm_min(self.feed)
+            .with_feed_up_mm_min((self.travel_feed > 0.0).then_some(self.travel_feed))
+            .with_origin(match self.origin {
+                OriginArg::BottomLeft => Origin::BottomLeft,
+                OriginArg::TopLeft => Origin::TopLeft,
+            })
+            .with_flip_y(self.flip_y)
+    }
+
+    fn hpgl_options(&self) -> HpglOptions {
+        let cutter = self.cutter.then(|| {
+            let mut c = CutterOptions::DEFAULT;
+            c.overcut_mm = self.overcut;
+            c.knife_offset_mm = self.knife_offset;
+            c
+        });
+        HpglOptions::DEFAULT
+            .with_cutter(cutter)
+            .with_mirror(self.mirror, false)
+    }
+}
+
+/// `moyo plot`.
+pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
+    let speeds = args.speeds.speeds()?;
+    let options = args.plot_options();
+    options
+        .validate("plot")
+        .map_err(|e| CliError::Message(format!("options: {e}")))?;
+    let scene = load_svg(&args.input)?;
+    let scene = plot::run(scene, &options)?;
+
+    // Everything is computed before anything is written.
+    let bytes = match args.format() {
+        OutputFormat::Svg => to_svg(&scene, &SvgOptions::DEFAULT.with_precision(args.precision)),
+        OutputFormat::Gcode => {
+            let o = args.gcode_options();
+            o.validate()?;
+            to_gcode(&scene, &o)
+        }
+        OutputFormat::Hpgl => {
+            let o = args.hpgl_options();
+            o.validate()?;
+            to_hpgl(&scene, &o)
+        }
+    };
+    let png = match &args.png {
+        Some(_) => {
+            let preview = if args.show_travel {
+                with_travel(&scene)
+            } else {
+                scene.clone()
+            };
+            Some(render_png(&to_svg(&preview, &SvgOptions::DEFAULT), args.dpi)?)
+        }
+        None => None,
+    };
+    write_atomic(&args.output, bytes.as_bytes())?;
+    if let (Some(path), Some(png)) = (&args.png, &png) {
+        write_atomic(path, png)?;
+    }
+    let s = plot::stats(&scene, &speeds);
+    eprintln!(
+        "wrote {} ({} paths, {:.0} mm pen-down, {:.0} mm pen-up, about {})",
+        args.output.display(),
+        s.paths,
+        s.pen_down_mm,
+        s.pen_up_mm,
+        duration(s.plot_time_s)
+    );
+    warn_outside_page(&scene);
+    Ok(())
+}
+
+/// The scene with one more layer: red lines along every pen-up move, in
+/// the order [`plot::stats`] counts them (each pen from the origin).
+fn with_travel(scene: &Scene) -> Scene {
+    let flat = plot::flatten::by_pen(scene);
+    let mut travel = BezPath::new();
+    for layer in &flat.layers {
+        let mut at = Point::ZERO;
+        layer.content.visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+            let path = t * p.path.clone();
+            for sub in plot::flatten::subpaths(&path) {
+                let (Some(start), Some(end)) = (first_point(&sub), last_point(&sub)) else {
+                    continue;
+                };
+                travel.move_to(at);
+                travel.line_to(start);
+                at = end;
+            }
+        });
+    }
+    let number = flat.pens.iter().map(|p| p.number).max().unwrap_or(0) + 1;
+    let mut out = flat;
+    out.pens.push(Pen {
+        number,
+        name: "travel".into(),
+        color: Color::rgb(230, 40, 40),
+        width: 0.15,
+    });
+    let mut content = Group::new("travel.paths");
+    content.push_path("travel", travel, Style::default());
+    out.layers.push(Layer {
+        id: "travel".into(),
+        name: "travel".into(),
+        pen: number,
+        depth: -1,
+        content,
+    });
+    out
+}
+
+fn first_point(p: &BezPath) -> Option<Point> {
+    p.elements().first().and_then(|e| e.end_point())
+}
+
+fn last_point(p: &BezPath) -> Option<Point> {
+    match p.elements().last()? {
+        kurbo::PathEl::ClosePath => first_point(p),
+        e => e.end_point(),
+    }
+}
+
+fn duration(seconds: f64) -> String {
+    let s = seconds.round() as u64;
+    if s >= 3600 {
+        format!("{}h{:02}m", s / 3600, (s % 3600) / 60)
+    } else if s >= 60 {
+        format!("{}m{:02}s", s / 60, s % 60)
+    } else {
+        format!("{s}s")
+    }
+}
+
+/// `moyo stats`.
+pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
+    let speeds = args.speeds.speeds()?;
+    let scene = load_svg(&args.input)?;
+    let s = plot::stats(&scene, &speeds);
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        let text = serde_json::to_string_pretty(&s)
+            .map_err(|e| CliError::Message(format!("JSON: {e}")))?;
+        writeln!(out, "{text}").map_err(stdout_error)?;
+        return Ok(());
+    }
+    let row = |out: &mut dyn Write, name: &str, paths: usize, down: f64, up: f64, t: f64| {
+        writeln!(
+            out,
+            "{name:<24} {paths:>8} {down:>14.1} {up:>14.1} {:>10}",
+            duration(t)
+        )
+    };
+    writeln!(
+        out,
+        "{:<24} {:>8} {:>14} {:>14} {:>10}",
+        "layer", "paths", "pen-down mm", "pen-up mm", "time"
+    )
+    .map_err(stdout_error)?;
+    for l in &s.layers {
+        row(&mut out, &l.name, l.paths, l.pen_down_mm, l.pen_up_mm, l.plot_time_s)
+            .map_err(stdout_error)?;
+    }
+    row(&mut out, "total", s.paths, s.pen_down_mm, s.pen_up_mm, s.plot_time_s)
+        .map_err(stdout_error)?;
+    Ok(())
+}

@@ -1,0 +1,493 @@
+//! Flattening a scene for plotting: one layer per pen, one flat group of
+//! paths per layer, everything in page coordinates.
+//!
+//! The other plot stages ([`super::merge`], [`super::sort`],
+//! [`super::simplify`], [`super::multipass`]) work on such a *flat scene*,
+//! layer by layer, so they never mix pens and never have to think about
+//! group transforms. [`by_pen`] makes one from any scene:
+//!
+//! - one [`Layer`] per pen number used by the scene, in ascending pen number,
+//!   with id `pen-N`, the pen's name (empty when the pen is not in
+//!   [`Scene::pens`]) and depth 0;
+//! - its content is one group `pen-N.paths` with the identity transform
+//!   whose children are every path of that pen's layers, in paint order
+//!   ([`Scene::layers_back_to_front`], then document order inside a layer);
+//! - every group transform *and the margin translation* is applied to the
+//!   path coordinates, so the coordinates are **page coordinates** (origin
+//!   at the top-left corner of the sheet, mm, y down). To say so in the
+//!   data, the flat scene has the same page size and **zero margins**: its
+//!   drawable area is the whole sheet and [`Scene::page_transform`] is the
+//!   identity. (To fit a drawing inside the original margins, run
+//!   [`super::transform`] before flattening or give it the margin
+//!   explicitly.)
+//!
+//! Paths keep their ids and styles; a path with several subpaths stays one
+//! path here (stages that need single-subpath paths call
+//! [`split_subpaths`]).
+//!
+//! The helpers [`take_paths`] and [`set_paths`] are how the stages read and
+//! write a layer's paths. On a layer that is not flat they flatten it first
+//! (applying its group transforms, in the layer's own coordinates), so the
+//! stages also do something sensible on a scene that did not go through
+//! [`by_pen`] — but distances are then measured in each layer's coordinates.
+
+use std::collections::BTreeSet;
+
+use kurbo::{Affine, BezPath, PathEl, Point};
+
+use crate::scene::{Group, Layer, Node, Scene, StyledPath};
+use crate::units::Margins;
+
+/// One layer per pen, with every path in page coordinates (see the module
+/// documentation). The result has the page size of `scene`, zero margins,
+/// the same pens and description.
+pub fn by_pen(scene: &Scene) -> Scene {
+    let page_transform = scene.page_transform();
+    let back_to_front = scene.layers_back_to_front();
+    // BTreeSet: ascending pen numbers, each once.
+    let pens: BTreeSet<u32> = back_to_front.iter().map(|l| l.pen).collect();
+    let layers = pens
+        .into_iter()
+        .map(|number| {
+            let mut content = Group::new(format!("pen-{number}.paths"));
+            for layer in back_to_front.iter().filter(|l| l.pen == number) {
+                layer.content.visit_paths(page_transform, &mut |p, t| {
+                    content.children.push(Node::Path(StyledPath {
+                        id: p.id.clone(),
+                        path: transformed(&p.path, t),
+                        style: p.style.clone(),
+                    }));
+                });
+            }
+            Layer {
+                id: format!("pen-{number}"),
+                name: scene
+                    .pen(number)
+                    .map_or_else(String::new, |p| p.name.clone()),
+                pen: number,
+                depth: 0,
+                content,
+            }
+        })
+        .collect();
+    let mut page = scene.page;
+    page.margins = Margins::default();
+    Scene {
+        page,
+        pens: scene.pens.clone(),
+        layers,
+        description: scene.description.clone(),
+    }
+}
+
+/// Whether `layer` is flat: its content has the identity transform and only
+/// paths as children.
+pub fn is_flat(layer: &Layer) -> bool {
+    layer.content.transform == Affine::IDENTITY
+        && layer
+            .content
+            .children
+            .iter()
+            .all(|n| matches!(n, Node::Path(_)))
+}
+
+/// Takes the paths out of `layer`, leaving its content empty. A flat layer
+/// gives its paths as they are; any other layer is flattened first (group
+/// transforms applied, coordinates in the layer's own frame).
+pub fn take_paths(layer: &mut Layer) -> Vec<StyledPath> {
+    if is_flat(layer) {
+        return std::mem::take(&mut layer.content.children)
+            .into_iter()
+            .filter_map(|n| match n {
+                Node::Path(p) => Some(p),
+                Node::Group(_) => None,
+            })
+            .collect();
+    }
+    let mut out = Vec::new();
+    layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+        out.push(StyledPath {
+            id: p.id.clone(),
+            path: transformed(&p.path, t),
+            style: p.style.clone(),
+        });
+    });
+    layer.content.children.clear();
+    out
+}
+
+/// Makes `paths` the content of `layer`: a flat group (the content keeps
+/// its id; its transform becomes the identity).
+pub fn set_paths(layer: &mut Layer, paths: Vec<StyledPath>) {
+    layer.content.transform = Affine::IDENTITY;
+    layer.content.children = paths.into_iter().map(Node::Path).collect();
+}
+
+/// Splits every path with several subpaths into one path per subpath, in
+/// order. The first subpath keeps the id; the k-th further one gets
+/// `{id}.{k}` (k from 1). Styles are copied. Subpaths that draw nothing (a
+/// lone move-to) are dropped, and so are paths left empty; see
+/// [`subpaths`] for the exact rules.
+pub fn split_subpaths(paths: Vec<StyledPath>) -> Vec<StyledPath> {
+    let mut out = Vec::with_capacity(paths.len());
+    for p in paths {
+        if is_single_subpath(&p.path) {
+            out.push(p);
+            continue;
+        }
+        for (k, sub) in subpaths(&p.path).into_iter().enumerate() {
+            out.push(StyledPath {
+                id: if k == 0 {
+                    p.id.clone()
+                } else {
+                    format!("{}.{k}", p.id)
+                },
+                path: sub,
+                style: p.style.clone(),
+            });
+        }
+    }
+    out
+}
+
+/// The subpaths of `path`, each as its own normalised path: it starts with
+/// a move-to, has at least one more element, and a close-path, if any, is
+/// its last element. Drawing elements after a close-path without a move-to
+/// start a new subpath at the closed one's start (the SVG rule). Lone
+/// move-tos and repeated close-paths draw nothing and are dropped; a
+/// subpath `M p Z` (a dot) is kept.
+pub fn subpaths(path: &BezPath) -> Vec<BezPath> {
+    let mut out = Vec::new();
+    let mut cur: Vec<PathEl> = Vec::new();
+    let mut start = Point::ZERO;
+    let flush = |cur: &mut Vec<PathEl>, out: &mut Vec<BezPath>| {
+        if cur.len() > 1 {
+            out.push(BezPath::from_vec(std::mem::take(cur)));
+        } else {
+            cur.clear();
+        }
+    };
+    for &el in path.elements() {
+        match el {
+            PathEl::MoveTo(p) => {
+                flush(&mut cur, &mut out);
+                start = p;
+                cur.push(el);
+            }
+            PathEl::ClosePath => {
+                if cur.is_empty() {
+                    // A repeated close-path, or one at the very beginning.
+                    continue;
+                }
+                cur.push(el);
+                flush(&mut cur, &mut out);
+            }
+            _ => {
+                if cur.is_empty() {
+                    cur.push(PathEl::MoveTo(start));
+                }
+                cur.push(el);
+            }
+        }
+    }
+    flush(&mut cur, &mut out);
+    out
+}
+
+/// Whether a normalised subpath ends with a close-path.
+pub(crate) fn is_closed(path: &BezPath) -> bool {
+    matches!(path.elements().last(), Some(PathEl::ClosePath))
+}
+
+/// The first point of a normalised subpath.
+pub(crate) fn start_point(path: &BezPath) -> Point {
+    match path.elements().first() {
+        Some(PathEl::MoveTo(p)) => *p,
+        _ => Point::ZERO,
+    }
+}
+
+/// Where the pen is after drawing a normalised subpath (its start when it
+/// is closed).
+pub(crate) fn end_point(path: &BezPath) -> Point {
+    match path.elements().last() {
+        Some(&el) if el != PathEl::ClosePath => el_end(el),
+        _ => start_point(path),
+    }
+}
+
+/// An open normalised subpath drawn the other way round. Exact: the same
+/// points in reverse order, so every segment is the same curve.
+pub(crate) fn reverse_open(path: &BezPath) -> BezPath {
+    let mut out = path.clone();
+    reverse_open_in_place(&mut out);
+    out
+}
+
+/// [`reverse_open`] without allocating.
+pub(crate) fn reverse_open_in_place(path: &mut BezPath) {
+    debug_assert!(!is_closed(path));
+    let end = end_point(path);
+    let els = path.elements_mut();
+    // Element i (from the end of element i - 1 to its own end) becomes the
+    // way back: its control points swapped, ending where it started.
+    for i in (1..els.len()).rev() {
+        let prev = el_end(els[i - 1]);
+        els[i] = match els[i] {
+            PathEl::QuadTo(c, _) => PathEl::QuadTo(c, prev),
+            PathEl::CurveTo(c1, c2, _) => PathEl::CurveTo(c2, c1, prev),
+            _ => PathEl::LineTo(prev),
+        };
+    }
+    if let Some(first) = els.first_mut() {
+        *first = PathEl::MoveTo(end);
+    }
+    if els.len() > 1 {
+        els[1..].reverse();
+    }
+}
+
+/// The on-curve end point of an element (the origin for a close-path,
+/// which callers never ask about).
+pub(crate) fn el_end(el: PathEl) -> Point {
+    match el {
+        PathEl::MoveTo(p) | PathEl::LineTo(p) | PathEl::QuadTo(_, p) | PathEl::CurveTo(_, _, p) => {
+            p
+        }
+        PathEl::ClosePath => Point::ZERO,
+    }
+}
+
+/// Whether `path` is already one normalised subpath (the common case, so
+/// that splitting does not copy it).
+fn is_single_subpath(path: &BezPath) -> bool {
+    let els = path.elements();
+    if els.len() < 2 || !matches!(els[0], PathEl::MoveTo(_)) {
+        return false;
+    }
+    let last = els.len() - 1;
+    els[1..].iter().enumerate().all(|(i, el)| match el {
+        PathEl::MoveTo(_) => false,
+        PathEl::ClosePath => i + 1 == last,
+        _ => true,
+    })
+}
+
+/// `path` mapped by `t`, without copying when `t` is the identity.
+fn transformed(path: &BezPath, t: Affine) -> BezPath {
+    if t == Affine::IDENTITY {
+        path.clone()
+    } else {
+        t * path.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Color, Pen, Style};
+    use crate::units::{Orientation, Page, PaperName};
+    use kurbo::{Line, Shape};
+
+    fn line(a: (f64, f64), b: (f64, f64)) -> BezPath {
+        Line::new(a, b).into_path(0.1)
+    }
+
+    fn pen(number: u32, name: &str) -> Pen {
+        Pen {
+            number,
+            name: name.into(),
+            color: Color::BLACK,
+            width: 0.3,
+        }
+    }
+
+    fn layer(id: &str, pen: u32, depth: i32, content: Group) -> Layer {
+        Layer {
+            id: id.into(),
+            name: id.into(),
+            pen,
+            depth,
+            content,
+        }
+    }
+
+    fn ids(layer: &Layer) -> Vec<&str> {
+        layer
+            .content
+            .children
+            .iter()
+            .map(|n| match n {
+                Node::Path(p) => p.id.as_str(),
+                Node::Group(g) => g.id.as_str(),
+            })
+            .collect()
+    }
+
+    fn path_of<'a>(layer: &'a Layer, id: &str) -> &'a BezPath {
+        layer
+            .content
+            .children
+            .iter()
+            .find_map(|n| match n {
+                Node::Path(p) if p.id == id => Some(&p.path),
+                _ => None,
+            })
+            .unwrap()
+    }
+
+    fn test_scene() -> Scene {
+        // Pen 2, front: a line inside a scaled group inside a translated one.
+        let mut front = Group::new("front");
+        let mut outer = Group::new("outer");
+        outer.transform = Affine::translate((100.0, 50.0));
+        let mut inner = Group::new("inner");
+        inner.transform = Affine::scale(2.0);
+        inner.push_path("f1", line((1.0, 1.0), (11.0, 1.0)), Style::default());
+        outer.push_group(inner);
+        front.push_group(outer);
+        front.push_path("f2", line((0.0, 0.0), (5.0, 0.0)), Style::default());
+
+        // Pen 1, back and middle layers.
+        let mut back = Group::new("back");
+        back.push_path("b1", line((0.0, 0.0), (1.0, 0.0)), Style::default());
+        let mut middle = Group::new("middle");
+        middle.transform = Affine::translate((0.0, 3.0));
+        middle.push_path("m1", line((0.0, 0.0), (1.0, 0.0)), Style::default());
+
+        Scene {
+            page: Page::named(PaperName::A4, Orientation::Portrait, Margins::uniform(10.0)),
+            pens: vec![pen(1, "black"), pen(2, "red")],
+            layers: vec![
+                layer("front", 2, 0, front),
+                layer("middle", 1, 1, middle),
+                layer("back", 1, 5, back),
+            ],
+            description: Some("x".into()),
+        }
+    }
+
+    #[test]
+    fn by_pen_groups_by_pen_in_paint_order() {
+        let flat = by_pen(&test_scene());
+        let layer_ids: Vec<&str> = flat.layers.iter().map(|l| l.id.as_str()).collect();
+        assert_eq!(layer_ids, ["pen-1", "pen-2"]);
+        assert_eq!(flat.layers[0].name, "black");
+        assert_eq!(flat.layers[1].name, "red");
+        assert_eq!(flat.layers[0].content.id, "pen-1.paths");
+        // Back (depth 5) before middle (depth 1).
+        assert_eq!(ids(&flat.layers[0]), ["b1", "m1"]);
+        assert_eq!(ids(&flat.layers[1]), ["f1", "f2"]);
+        assert!(flat.layers.iter().all(is_flat));
+        assert_eq!(flat.page.margins, Margins::default());
+        assert_eq!(flat.page_transform(), Affine::IDENTITY);
+        assert_eq!(flat.description.as_deref(), Some("x"));
+    }
+
+    #[test]
+    fn by_pen_applies_nested_transforms_and_margins() {
+        let scene = test_scene();
+        let flat = by_pen(&scene);
+        // (1,1) scaled by 2 → (2,2), translated → (102,52), margin → (112,62).
+        let f1 = path_of(&flat.layers[1], "f1");
+        assert_eq!(f1.elements()[0], PathEl::MoveTo(Point::new(112.0, 62.0)));
+        assert_eq!(f1.elements()[1], PathEl::LineTo(Point::new(132.0, 62.0)));
+        let m1 = path_of(&flat.layers[0], "m1");
+        assert_eq!(m1.elements()[0], PathEl::MoveTo(Point::new(10.0, 13.0)));
+        // Same ink and same page-coordinate bounds as before.
+        assert_eq!(flat.bounds(), scene.bounds());
+        assert!((flat.stats().pen_down_mm - scene.stats().pen_down_mm).abs() < 1e-9);
+    }
+
+    #[test]
+    fn layer_of_unknown_pen_gets_empty_name() {
+        let mut scene = test_scene();
+        scene.pens.clear();
+        let flat = by_pen(&scene);
+        assert_eq!(flat.layers[0].name, "");
+    }
+
+    #[test]
+    fn take_paths_flattens_a_nested_layer() {
+        let mut scene = test_scene();
+        let mut l = scene.layers.remove(0);
+        let paths = take_paths(&mut l);
+        let got: Vec<&str> = paths.iter().map(|p| p.id.as_str()).collect();
+        assert_eq!(got, ["f1", "f2"]);
+        assert_eq!(
+            paths[0].path.elements()[0],
+            PathEl::MoveTo(Point::new(102.0, 52.0))
+        );
+        set_paths(&mut l, paths);
+        assert!(is_flat(&l));
+        assert_eq!(l.content.id, "front");
+    }
+
+    #[test]
+    fn subpaths_follow_svg_rules() {
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.line_to((1.0, 0.0));
+        p.line_to((1.0, 1.0));
+        p.close_path();
+        p.close_path(); // draws nothing
+        p.line_to((5.0, 5.0)); // new subpath from (0,0)
+        p.move_to((9.0, 9.0)); // lone move-to
+        p.move_to((7.0, 7.0));
+        p.close_path(); // a dot
+        let subs = subpaths(&p);
+        assert_eq!(subs.len(), 3);
+        assert_eq!(subs[0].elements().len(), 4);
+        assert_eq!(
+            subs[1].elements(),
+            [
+                PathEl::MoveTo(Point::new(0.0, 0.0)),
+                PathEl::LineTo(Point::new(5.0, 5.0))
+            ]
+        );
+        assert_eq!(
+            subs[2].elements(),
+            [PathEl::MoveTo(Point::new(7.0, 7.0)), PathEl::ClosePath]
+        );
+    }
+
+    #[test]
+    fn split_keeps_ids_and_single_paths() {
+        let mut two = line((0.0, 0.0), (1.0, 0.0));
+        two.move_to((5.0, 5.0));
+        two.line_to((6.0, 5.0));
+        let paths = vec![
+            StyledPath {
+                id: "a".into(),
+                path: two,
+                style: Style::default(),
+            },
+            StyledPath {
+                id: "b".into(),
+                path: line((0.0, 0.0), (2.0, 0.0)),
+                style: Style::default(),
+            },
+            StyledPath {
+                id: "empty".into(),
+                path: BezPath::new(),
+                style: Style::default(),
+            },
+        ];
+        let split = split_subpaths(paths);
+        let got: Vec<&str> = split.iter().map(|p| p.id.as_str()).collect();
+        assert_eq!(got, ["a", "a.1", "b"]);
+    }
+
+    #[test]
+    fn reverse_open_is_exact() {
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.line_to((1.0, 0.0));
+        p.quad_to((2.0, 1.0), (3.0, 0.0));
+        p.curve_to((4.0, 1.0), (5.0, 2.0), (6.0, 0.0));
+        let r = reverse_open(&p);
+        assert_eq!(start_point(&r), Point::new(6.0, 0.0));
+        assert_eq!(end_point(&r), Point::new(0.0, 0.0));
+        assert_eq!(reverse_open(&r), p);
+    }
+}

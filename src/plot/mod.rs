@@ -1,0 +1,25 @@
+//! The plot pipeline: stages that turn a scene into one a plotter runs well
+//! (hidden lines, hatching, merging, simplifying, ordering), usable on
+//! generated scenes and on imported SVGs alike. Each stage reads and writes
+//! a [`crate::scene::Scene`]; none generates motifs or writes files.
+
+pub mod flatten;
+pub mod hatch;
+pub mod merge;
+pub mod multipass;
+pub mod occlude;
+pub mod simplify;
+pub mod sort;
+pub mod stats;
+pub mod pipeline;
+pub mod transform;
+
+pub use hatch::HatchOptions;
+pub use merge::MergeOptions;
+pub use multipass::MultipassOptions;
+pub use occlude::OccludeOptions;
+pub use pipeline::{run, PlotOptions};
+pub use simplify::SimplifyOptions;
+pub use sort::SortOptions;
+pub use stats::{stats, PlotStats, Speeds};
+pub use transform::TransformOptions;

@@ -1,0 +1,1281 @@
+//! Hidden lines: closed shapes in front hide the strokes behind them
+//! (SPEC §0 "the plot pipeline turns depth into occlusion", §6).
+//!
+//! **Paint order.** Layers back to front ([`Scene::layers_back_to_front`]:
+//! largest depth first, equal depths in description order); within a
+//! layer, depth first through its groups, children in order (a later child
+//! is in front of an earlier one). Layers named in
+//! [`OccludeOptions::skip_layers`] take no part: they are neither hidden
+//! nor hide.
+//!
+//! **Who hides.** A filled path always hides what lies behind the area it
+//! fills (non-zero rule, open subpaths closed as an SVG fill closes them).
+//! With [`OccludeOptions::closed_paths_occlude`] (the default) an unfilled
+//! path hides too: the area its closed subpaths enclose under the non-zero
+//! rule — an outline means a solid shape to a plotter artist. A subpath is
+//! closed when it ends with a close-path or returns to its start point.
+//! Holes are holes: a ring drawn as an outer contour and an inner contour
+//! wound the other way hides nothing seen through its hole (two contours
+//! wound the same way make a solid disc, as in an SVG fill). Shapes that
+//! enclose no area (a retraced line, a point) hide nothing; that is not an
+//! error.
+//!
+//! **What is hidden.** Every path's stroke loses the parts inside the
+//! union of the shapes painted after it — never its own shape. The parts
+//! that stay are exact sub-curves of the stroke (see
+//! [`crate::geom::clip`]: cut points and the inside/outside decision are
+//! right within [`OccludeOptions::tolerance`]), joined into one path with
+//! one subpath per visible run, keeping the path's id and its place in the
+//! tree; visible pieces shorter than the tolerance (stubs where a stroke
+//! grazes a front outline) are dropped; a path hidden entirely is removed
+//! (its group stays, possibly empty). Geometry is tested on the page (all
+//! group transforms and the margins applied) and written back in the
+//! coordinates of the path's own group. A path that nothing hides is left
+//! exactly as it was. A filled path that is partly hidden loses its fill:
+//! its outline is now open pieces, which cannot carry one. To hatch shapes
+//! and have the hatching hidden too, run [`super::hatch`] first — hatch
+//! lines are strokes like any other — and keep closed outlines occluding.
+//!
+//! **Silhouettes.** With [`OccludeOptions::silhouettes`], before hiding,
+//! every group below a layer's top group whose children are all paths (a
+//! tree of [`crate::motif::kimono`]: one closed outline per limb) has its
+//! closed paths replaced by the outline of their union, a path with the
+//! group's id plus [`SILHOUETTE_SUFFIX`], at the place of the first of
+//! them. Limb outlines that cross inside the tree vanish; without it a
+//! later limb hides the earlier limbs' outlines inside it, but its own
+//! outline stays visible inside the earlier ones. A group whose closed
+//! paths differ in style (fill) is left alone, as is one with fewer than
+//! two closed paths that enclose an area.
+//!
+//! **Cost.** With `n` paths, `m` occluders and `s` segments in all: every
+//! occluder is made a [`Region`] once (one sweep of its own curves); the
+//! occluders' page bounding boxes go into an R-tree (bulk load,
+//! O(m log m)). Each path asks the R-tree for the boxes meeting its own
+//! (O(log m + k)), keeps the `k` that are painted after it and meet the box
+//! of one of its segments, unions them in one sweep
+//! ([`Region::union_all`]: O((e + x) log e) for their `e` curves crossing
+//! `x` times; skipped when `k` ≤ 1) and clips its stroke by the result
+//! (linear in the stroke's segments times the outline edges near each).
+//! So the work is near-linear in the size of the scene when every stroke
+//! lies behind a bounded number of shapes, as in a kimono pattern, and
+//! grows with the square of `k` only where many shapes are stacked on one
+//! spot. Nothing is compared with everything.
+
+use kurbo::{Affine, BezPath, ParamCurveExtrema, PathEl, Point, Rect};
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{RTree, AABB};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::geom::clip::StrokeClipper;
+use crate::geom::region::{check_coordinates, FillRule, Region};
+use crate::geom::TOLERANCE;
+use crate::scene::{path_length, Group, Node, Scene, StyledPath};
+
+/// Appended to a group's id to make the id of its silhouette path.
+pub const SILHOUETTE_SUFFIX: &str = ".silhouette";
+
+/// A subpath whose end lies this close (mm, on the page) to its start
+/// counts as closed even without a close-path.
+const CLOSE_EPS: f64 = 1e-9;
+
+/// Options of [`run`].
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OccludeOptions {
+    /// Unfilled paths hide what lies behind the area their closed
+    /// subpaths enclose (filled paths always hide). Default `true`.
+    pub closed_paths_occlude: bool,
+    /// Merge the closed paths of every group of paths (a tree's limbs)
+    /// into one silhouette first. Default `false`.
+    pub silhouettes: bool,
+    /// Ids of layers that are neither hidden nor hide.
+    pub skip_layers: Vec<String>,
+    /// Accuracy in mm of cut points and of the inside/outside decision
+    /// near an outline (> 0); also the shortest visible piece kept.
+    /// Default [`TOLERANCE`].
+    pub tolerance: f64,
+}
+
+impl OccludeOptions {
+    /// Closed paths occlude, no silhouettes, no layer skipped, tolerance
+    /// [`TOLERANCE`].
+    pub const DEFAULT: OccludeOptions = OccludeOptions {
+        closed_paths_occlude: true,
+        silhouettes: false,
+        skip_layers: Vec::new(),
+        tolerance: TOLERANCE,
+    };
+
+    /// With [`OccludeOptions::closed_paths_occlude`] set.
+    pub fn with_closed_paths_occlude(mut self, closed_paths_occlude: bool) -> Self {
+        self.closed_paths_occlude = closed_paths_occlude;
+        self
+    }
+
+    /// With [`OccludeOptions::silhouettes`] set.
+    pub fn with_silhouettes(mut self, silhouettes: bool) -> Self {
+        self.silhouettes = silhouettes;
+        self
+    }
+
+    /// With these layers skipped (by id).
+    pub fn with_skip_layers<I, S>(mut self, ids: I) -> Self
+    where
+        I: IntoIterator<Item = S>,
+        S: Into<String>,
+    {
+        self.skip_layers = ids.into_iter().map(Into::into).collect();
+        self
+    }
+
+    /// With this tolerance (mm).
+    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Checks the values on their own.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] (field `occlude.tolerance`) when the tolerance is
+    /// not a finite number > 0.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
+            return Err(Error::invalid(
+                "occlude.tolerance",
+                format!("must be a finite number of mm > 0, got {}", self.tolerance),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl Default for OccludeOptions {
+    fn default() -> Self {
+        OccludeOptions::DEFAULT
+    }
+}
+
+/// Removes hidden lines from `scene` (see the [module docs](self)).
+///
+/// # Errors
+/// [`Error::Invalid`] when the options are invalid (`occlude.tolerance`),
+/// when `skip_layers` names a layer the scene does not have
+/// (`occlude.skip_layers`), or when a path has a coordinate on the page
+/// that is not finite or lies beyond [`crate::spec::MAX_COORD`] (field
+/// `occlude.paths[<id>]`). The scene is unchanged on error.
+pub fn run(scene: &mut Scene, o: &OccludeOptions) -> Result<()> {
+    o.validate()?;
+    for id in &o.skip_layers {
+        if !scene.layers.iter().any(|l| &l.id == id) {
+            let known: Vec<&str> = scene.layers.iter().map(|l| l.id.as_str()).collect();
+            return Err(Error::invalid(
+                "occlude.skip_layers",
+                format!("no layer has the id '{id}' (layers: {})", known.join(", ")),
+            ));
+        }
+    }
+    let skipped = |id: &str| o.skip_layers.iter().any(|s| s == id);
+    let page = scene.page_transform();
+
+    // Everything that can fail is checked before the scene is touched.
+    let order: Vec<usize> = scene
+        .layers_back_to_front()
+        .into_iter()
+        .filter(|l| !skipped(&l.id))
+        .filter_map(|l| scene.layers.iter().position(|x| std::ptr::eq(x, l)))
+        .collect();
+    let mut painted = Vec::new();
+    for &li in &order {
+        collect(&scene.layers[li].content, page, li, &mut painted)?;
+    }
+
+    if o.silhouettes {
+        for &li in &order {
+            silhouettes_below(&mut scene.layers[li].content, page, true);
+        }
+        painted.clear();
+        for &li in &order {
+            collect(&scene.layers[li].content, page, li, &mut painted)?;
+        }
+    }
+
+    let occluders: Vec<Occluder> = painted
+        .iter()
+        .enumerate()
+        .filter_map(|(paint, p)| {
+            let region = occluding_region(p, o)?;
+            Some(Occluder {
+                paint,
+                bounds: region.bounds(),
+                region,
+            })
+        })
+        .collect();
+    let outcomes = hide(&painted, &occluders, o.tolerance);
+
+    let mut per_layer: Vec<Vec<Outcome>> = vec![Vec::new(); scene.layers.len()];
+    for (p, outcome) in painted.iter().zip(outcomes) {
+        per_layer[p.layer].push(outcome);
+    }
+    for (layer, outcomes) in scene.layers.iter_mut().zip(per_layer) {
+        if !outcomes.is_empty() {
+            apply(&mut layer.content, &mut outcomes.into_iter());
+        }
+    }
+    Ok(())
+}
+
+/// A path of the scene in paint order, on the page.
+struct Painted {
+    /// Index of its layer in `Scene::layers`.
+    layer: usize,
+    /// Transform from its group's coordinates to the page.
+    to_page: Affine,
+    /// The path on the page.
+    page: BezPath,
+    /// Whether it is filled.
+    filled: bool,
+}
+
+/// A shape that hides what is painted before it.
+struct Occluder {
+    /// Index of its path in paint order.
+    paint: usize,
+    region: Region,
+    bounds: Rect,
+}
+
+/// What happens to a path.
+#[derive(Debug, Clone, PartialEq)]
+enum Outcome {
+    /// Nothing hides it.
+    Keep,
+    /// Partly hidden: its visible parts, in its group's coordinates.
+    Cut(BezPath),
+    /// Hidden entirely.
+    Remove,
+}
+
+/// Appends the paths below `group` (whose parent maps to the page by
+/// `outer`) in paint order.
+fn collect(group: &Group, outer: Affine, layer: usize, out: &mut Vec<Painted>) -> Result<()> {
+    let here = outer * group.transform;
+    for child in &group.children {
+        match child {
+            Node::Group(g) => collect(g, here, layer, out)?,
+            Node::Path(p) => {
+                let page = here * p.path.clone();
+                check_path(&page, &p.id)?;
+                out.push(Painted {
+                    layer,
+                    to_page: here,
+                    page,
+                    filled: p.style.fill.is_some(),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Every coordinate of a path on the page is finite and within range.
+fn check_path(page: &BezPath, id: &str) -> Result<()> {
+    check_coordinates(page).map_err(|e| match e {
+        Error::Invalid { message, .. } => Error::invalid(format!("occlude.paths[{id}]"), message),
+        other => other,
+    })
+}
+
+/// Whether an affine map can be undone.
+fn invertible(a: Affine) -> bool {
+    let det = a.determinant();
+    a.is_finite() && det.is_finite() && det != 0.0
+}
+
+/// The area a path hides, if any.
+fn occluding_region(p: &Painted, o: &OccludeOptions) -> Option<Region> {
+    let shape = if p.filled {
+        p.page.clone()
+    } else if o.closed_paths_occlude {
+        closed_subpaths(&p.page)
+    } else {
+        return None;
+    };
+    if shape.elements().is_empty() {
+        return None;
+    }
+    // Region::new fails only on shapes without area here: coordinates
+    // were checked when the path was collected.
+    Region::new(shape, FillRule::NonZero).ok()
+}
+
+/// The subpaths of `path`, each with its elements and whether it is
+/// closed (ends with a close-path or at its start point).
+fn split_subpaths(path: &BezPath) -> Vec<(Vec<PathEl>, bool)> {
+    let mut out: Vec<(Vec<PathEl>, bool)> = Vec::new();
+    let mut current: Vec<PathEl> = Vec::new();
+    let finish = |current: &mut Vec<PathEl>, out: &mut Vec<(Vec<PathEl>, bool)>| {
+        if current.len() < 2 {
+            current.clear();
+            return;
+        }
+        let ends_closed = matches!(current.last(), Some(PathEl::ClosePath));
+        let start = match current[0] {
+            PathEl::MoveTo(p) => p,
+            _ => Point::ORIGIN,
+        };
+        let end = current
+            .iter()
+            .rev()
+            .find_map(|el| match *el {
+                PathEl::MoveTo(p) | PathEl::LineTo(p) => Some(p),
+                PathEl::QuadTo(_, p) | PathEl::CurveTo(_, _, p) => Some(p),
+                PathEl::ClosePath => None,
+            })
+            .unwrap_or(start);
+        let closed = ends_closed || (end - start).hypot() <= CLOSE_EPS;
+        out.push((std::mem::take(current), closed));
+    };
+    for el in path.elements() {
+        match el {
+            PathEl::MoveTo(_) => {
+                finish(&mut current, &mut out);
+                current.push(*el);
+            }
+            PathEl::ClosePath => {
+                current.push(*el);
+                finish(&mut current, &mut out);
+            }
+            _ => {
+                if current.is_empty() {
+                    current.push(PathEl::MoveTo(Point::ORIGIN));
+                }
+                current.push(*el);
+            }
+        }
+    }
+    finish(&mut current, &mut out);
+    out
+}
+
+/// The closed subpaths of `path`, each ending with a close-path.
+fn closed_subpaths(path: &BezPath) -> BezPath {
+    let mut out = BezPath::new();
+    for (els, closed) in split_subpaths(path) {
+        if closed {
+            for el in els {
+                if el != PathEl::ClosePath {
+                    out.push(el);
+                }
+            }
+            out.close_path();
+        }
+    }
+    out
+}
+
+/// Whether every subpath of `path` is closed (and it has one).
+fn is_closed_path(path: &BezPath) -> bool {
+    let subs = split_subpaths(path);
+    !subs.is_empty() && subs.iter().all(|(_, closed)| *closed)
+}
+
+/// Whether two rectangles meet (touching counts).
+fn overlaps(a: Rect, b: Rect) -> bool {
+    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
+}
+
+fn envelope(r: Rect) -> AABB<[f64; 2]> {
+    AABB::from_corners([r.x0, r.y0], [r.x1, r.y1])
+}
+
+/// The outcome of every painted path.
+fn hide(painted: &[Painted], occluders: &[Occluder], tolerance: f64) -> Vec<Outcome> {
+    let tree = RTree::bulk_load(
+        occluders
+            .iter()
+            .enumerate()
+            .map(|(k, oc)| {
+                let e = envelope(oc.bounds);
+                GeomWithData::new(Rectangle::from_corners(e.lower(), e.upper()), k)
+            })
+            .collect(),
+    );
+    painted
+        .iter()
+        .enumerate()
+        .map(|(paint, p)| {
+            if !invertible(p.to_page) {
+                return Outcome::Keep;
+            }
+            let segment_boxes: Vec<Rect> = p.page.segments().map(|s| s.bounding_box()).collect();
+            let Some(bounds) = segment_boxes.iter().copied().reduce(|a, b| a.union(b)) else {
+                return Outcome::Keep;
+            };
+            let mut front: Vec<usize> = tree
+                .locate_in_envelope_intersecting(&envelope(bounds))
+                .map(|g| g.data)
+                .filter(|&k| {
+                    occluders[k].paint > paint
+                        && segment_boxes
+                            .iter()
+                            .any(|s| overlaps(*s, occluders[k].bounds))
+                })
+                .collect();
+            if front.is_empty() {
+                return Outcome::Keep;
+            }
+            // Paint order, so that the union does not depend on how the
+            // R-tree happened to store the boxes.
+            front.sort_unstable();
+            let union;
+            let region = if let [one] = front.as_slice() {
+                &occluders[*one].region
+            } else {
+                let regions: Vec<Region> =
+                    front.iter().map(|&k| occluders[k].region.clone()).collect();
+                union = Region::union_all(&regions);
+                &union
+            };
+            visible_part(p, region, tolerance)
+        })
+        .collect()
+}
+
+/// What is left of a path outside `region`.
+fn visible_part(p: &Painted, region: &Region, tolerance: f64) -> Outcome {
+    if region.is_empty() {
+        return Outcome::Keep;
+    }
+    let clipped = StrokeClipper::new(region, tolerance).clip(&p.page);
+    if clipped.inside.is_empty() {
+        return Outcome::Keep;
+    }
+    let mut visible = BezPath::new();
+    for piece in clipped.outside {
+        if path_length(&piece) >= tolerance {
+            visible.extend(piece);
+        }
+    }
+    if visible.elements().is_empty() {
+        return Outcome::Remove;
+    }
+    Outcome::Cut(p.to_page.inverse() * visible)
+}
+
+/// Applies the outcomes of the paths below `group`, in paint order.
+fn apply(group: &mut Group, outcomes: &mut impl Iterator<Item = Outcome>) {
+    let children = std::mem::take(&mut group.children);
+    let mut kept = Vec::with_capacity(children.len());
+    for child in children {
+        match child {
+            Node::Group(mut g) => {
+                apply(&mut g, outcomes);
+                kept.push(Node::Group(g));
+            }
+            Node::Path(mut p) => match outcomes.next().unwrap_or(Outcome::Keep) {
+                Outcome::Keep => kept.push(Node::Path(p)),
+                Outcome::Cut(path) => {
+                    p.path = path;
+                    p.style.fill = None;
+                    kept.push(Node::Path(p));
+                }
+                Outcome::Remove => {}
+            },
+        }
+    }
+    group.children = kept;
+}
+
+/// Replaces the closed paths of every group of paths below `group` by
+/// their silhouette; `top` marks a layer's top group, which is not merged
+/// itself. Coordinates were checked before.
+fn silhouettes_below(group: &mut Group, outer: Affine, top: bool) {
+    let here = outer * group.transform;
+    let only_paths =
+        !group.children.is_empty() && group.children.iter().all(|c| matches!(c, Node::Path(_)));
+    if only_paths && !top {
+        merge_into_silhouette(group, here);
+        return;
+    }
+    for child in &mut group.children {
+        if let Node::Group(g) = child {
+            silhouettes_below(g, here, false);
+        }
+    }
+}
+
+/// Merges the closed paths of a group of paths (see the module docs).
+fn merge_into_silhouette(group: &mut Group, to_page: Affine) {
+    if !invertible(to_page) {
+        return;
+    }
+    let mut regions = Vec::new();
+    let mut members = Vec::new();
+    let mut style = None;
+    for (k, child) in group.children.iter().enumerate() {
+        let Node::Path(p) = child else { continue };
+        if !is_closed_path(&p.path) {
+            continue;
+        }
+        let Ok(region) = Region::new(to_page * p.path.clone(), FillRule::NonZero) else {
+            continue;
+        };
+        match &style {
+            None => style = Some(p.style.clone()),
+            Some(s) if *s != p.style => return,
+            Some(_) => {}
+        }
+        regions.push(region);
+        members.push(k);
+    }
+    let Some(style) = style else { return };
+    if members.len() < 2 {
+        return;
+    }
+    let union = Region::union_all(&regions);
+    if union.is_empty() {
+        return;
+    }
+    let silhouette = StyledPath {
+        id: format!("{}{SILHOUETTE_SUFFIX}", group.id),
+        path: to_page.inverse() * union.into_path(),
+        style,
+    };
+    let mut silhouette = Some(silhouette);
+    let children = std::mem::take(&mut group.children);
+    let mut out = Vec::with_capacity(children.len() - members.len() + 1);
+    for (k, child) in children.into_iter().enumerate() {
+        if members.binary_search(&k).is_ok() {
+            if let Some(s) = silhouette.take() {
+                out.push(Node::Path(s));
+            }
+        } else {
+            out.push(child);
+        }
+    }
+    group.children = out;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Color, Layer, Pen, Style};
+    use crate::units::{Margins, Orientation, Page, PaperName};
+    use kurbo::{Circle, Line, ParamCurve, ParamCurveNearest, Shape};
+    use proptest::prelude::*;
+    use std::collections::HashMap;
+
+    fn layer(id: &str, depth: i32, content: Group) -> Layer {
+        Layer {
+            id: id.into(),
+            name: id.into(),
+            pen: 1,
+            depth,
+            content,
+        }
+    }
+
+    fn scene(layers: Vec<Layer>) -> Scene {
+        Scene {
+            page: Page::named(PaperName::A4, Orientation::Portrait, Margins::uniform(10.0)),
+            pens: vec![Pen {
+                number: 1,
+                name: "black".into(),
+                color: Color::BLACK,
+                width: 0.3,
+            }],
+            layers,
+            description: None,
+        }
+    }
+
+    fn square(x0: f64, y0: f64, x1: f64, y1: f64) -> BezPath {
+        Rect::new(x0, y0, x1, y1).to_path(0.0)
+    }
+
+    fn group_of(id: &str, paths: Vec<(&str, BezPath)>) -> Group {
+        let mut g = Group::new(id);
+        for (pid, p) in paths {
+            g.push_path(pid, p, Style::default());
+        }
+        g
+    }
+
+    /// Pen-down length (mm, on the page) of one layer.
+    fn layer_length(scene: &Scene, id: &str) -> f64 {
+        let mut total = 0.0;
+        scene.visit_paths(|l, p, t| {
+            if l.id == id {
+                total += path_length(&(t * p.path.clone()));
+            }
+        });
+        total
+    }
+
+    fn path_by_id<'a>(scene: &'a Scene, id: &str) -> Option<&'a StyledPath> {
+        let mut found = None;
+        scene.visit_paths(|_, p, _| {
+            if p.id == id {
+                found = Some(p);
+            }
+        });
+        found
+    }
+
+    fn two_squares() -> Scene {
+        scene(vec![
+            layer(
+                "front",
+                0,
+                group_of("f", vec![("front", square(5.0, 5.0, 15.0, 15.0))]),
+            ),
+            layer(
+                "back",
+                1,
+                group_of("b", vec![("back", square(0.0, 0.0, 10.0, 10.0))]),
+            ),
+        ])
+    }
+
+    #[test]
+    fn front_square_hides_the_back_square_inside_it() {
+        let mut s = two_squares();
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        // The back square loses 5 mm of its right edge and 5 mm of its
+        // bottom edge: 40 − 10 = 30 mm; the front square is whole.
+        assert!((layer_length(&s, "back") - 30.0).abs() < 1e-9);
+        assert!((layer_length(&s, "front") - 40.0).abs() < 1e-9);
+        assert_eq!(
+            path_by_id(&s, "front").unwrap().path,
+            square(5.0, 5.0, 15.0, 15.0)
+        );
+        // One visible run: the closed outline opened where it is hidden.
+        let back = &path_by_id(&s, "back").unwrap().path;
+        let moves = back
+            .elements()
+            .iter()
+            .filter(|e| matches!(e, PathEl::MoveTo(_)))
+            .count();
+        assert_eq!(moves, 1, "{back:?}");
+    }
+
+    #[test]
+    fn layers_of_equal_depth_paint_in_description_order() {
+        let mut s = two_squares();
+        s.layers[1].depth = 0;
+        // Now "back" is described later, so it is in front.
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        assert!((layer_length(&s, "back") - 40.0).abs() < 1e-9);
+        assert!((layer_length(&s, "front") - 30.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn later_children_hide_earlier_ones_within_a_group() {
+        let mut s = scene(vec![layer(
+            "l",
+            0,
+            group_of(
+                "g",
+                vec![
+                    ("a", square(0.0, 0.0, 10.0, 10.0)),
+                    ("b", square(5.0, 5.0, 15.0, 15.0)),
+                ],
+            ),
+        )]);
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        let len = |id: &str| path_length(&path_by_id(&s, id).unwrap().path);
+        assert!((len("a") - 30.0).abs() < 1e-9);
+        assert!((len("b") - 40.0).abs() < 1e-9);
+    }
+
+    /// A 20 mm square with a 10 mm square hole, the hole wound the other
+    /// way (or, with `same_way`, the same way).
+    fn ring(same_way: bool) -> BezPath {
+        let mut p = square(0.0, 0.0, 20.0, 20.0);
+        let hole = square(5.0, 5.0, 15.0, 15.0);
+        p.extend(if same_way {
+            hole
+        } else {
+            hole.reverse_subpaths()
+        });
+        p
+    }
+
+    fn ring_over_line(same_way: bool) -> Scene {
+        let line = Line::new((-10.0, 10.0), (30.0, 10.0)).to_path(0.0);
+        scene(vec![layer(
+            "l",
+            0,
+            group_of("g", vec![("line", line), ("ring", ring(same_way))]),
+        )])
+    }
+
+    #[test]
+    fn what_is_seen_through_a_hole_stays() {
+        let mut s = ring_over_line(false);
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        let line = &path_by_id(&s, "line").unwrap().path;
+        // 10 mm left of the ring, 10 mm in the hole, 10 mm right of it.
+        assert!((path_length(line) - 30.0).abs() < 1e-9);
+        assert_eq!(line.segments().count(), 3);
+        let mid = line.segments().nth(1).unwrap();
+        assert!((mid.start().x - 5.0).abs() < 1e-9 && (mid.end().x - 15.0).abs() < 1e-9);
+
+        // Wound the same way, the inner contour is no hole (non-zero).
+        let mut s = ring_over_line(true);
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        assert!((path_length(&path_by_id(&s, "line").unwrap().path) - 20.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn skipped_layers_neither_hide_nor_are_hidden() {
+        for skip in ["front", "back"] {
+            let mut s = two_squares();
+            let before = s.clone();
+            run(&mut s, &OccludeOptions::DEFAULT.with_skip_layers([skip])).unwrap();
+            assert_eq!(s, before, "skipping {skip}");
+        }
+        let mut s = two_squares();
+        let e = run(&mut s, &OccludeOptions::DEFAULT.with_skip_layers(["frnt"])).unwrap_err();
+        assert!(e.to_string().contains("occlude.skip_layers"), "{e}");
+        assert!(e.to_string().contains("front, back"), "{e}");
+    }
+
+    #[test]
+    fn who_occludes() {
+        let line = || Line::new((-10.0, 5.0), (20.0, 5.0)).to_path(0.0);
+        let front = |path: BezPath, fill: Option<Color>| {
+            let mut g = group_of("g", vec![("line", line())]);
+            g.push_path("shape", path, Style { fill });
+            scene(vec![layer("l", 0, g)])
+        };
+        let visible = |mut s: Scene, o: &OccludeOptions| {
+            run(&mut s, o).unwrap();
+            path_by_id(&s, "line").map_or(0.0, |p| path_length(&p.path))
+        };
+        let closed = square(0.0, 0.0, 10.0, 10.0);
+        let mut open = BezPath::new();
+        open.move_to((0.0, 0.0));
+        open.line_to((10.0, 0.0));
+        open.line_to((10.0, 10.0));
+        open.line_to((0.0, 10.0));
+        let mut returning = open.clone();
+        returning.line_to((0.0, 0.0));
+        let d = OccludeOptions::DEFAULT;
+        let no_closed = d.clone().with_closed_paths_occlude(false);
+        assert!((visible(front(closed.clone(), None), &d) - 20.0).abs() < 1e-9);
+        assert!((visible(front(closed.clone(), None), &no_closed) - 30.0).abs() < 1e-9);
+        // Filled paths always hide, open ones closed as a fill closes them.
+        let black = Some(Color::BLACK);
+        assert!((visible(front(closed, black), &no_closed) - 20.0).abs() < 1e-9);
+        assert!((visible(front(open.clone(), black), &no_closed) - 20.0).abs() < 1e-9);
+        // An unfilled open path hides nothing; one returning to its start
+        // without a close-path is closed.
+        assert!((visible(front(open, None), &d) - 30.0).abs() < 1e-9);
+        assert!((visible(front(returning, None), &d) - 20.0).abs() < 1e-9);
+        // A shape without area hides nothing, and is no error.
+        let mut flat = BezPath::new();
+        flat.move_to((0.0, 5.0));
+        flat.line_to((10.0, 5.0));
+        flat.close_path();
+        assert!((visible(front(flat, None), &d) - 30.0).abs() < 1e-9);
+        // Wholly behind: removed.
+        let big = square(-20.0, -20.0, 30.0, 30.0);
+        assert_eq!(visible(front(big, None), &d), 0.0);
+    }
+
+    #[test]
+    fn a_cut_filled_path_loses_its_fill_and_a_whole_one_keeps_it() {
+        let mut g = Group::new("g");
+        let red = Some(Color::rgb(200, 0, 0));
+        g.push_path("cut", square(0.0, 0.0, 10.0, 10.0), Style { fill: red });
+        g.push_path("whole", square(50.0, 0.0, 60.0, 10.0), Style { fill: red });
+        g.push_path("front", square(5.0, 5.0, 15.0, 15.0), Style { fill: red });
+        let mut s = scene(vec![layer("l", 0, g)]);
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        assert_eq!(path_by_id(&s, "cut").unwrap().style.fill, None);
+        assert_eq!(path_by_id(&s, "whole").unwrap().style.fill, red);
+        assert_eq!(path_by_id(&s, "front").unwrap().style.fill, red);
+    }
+
+    #[test]
+    fn results_are_written_back_in_group_coordinates() {
+        // The back square is drawn at half size in a group scaled by 2 and
+        // shifted: on the page it is the back square of `two_squares`.
+        let mut s = two_squares();
+        let back = &mut s.layers[1].content;
+        back.transform = Affine::translate((-4.0, 2.0)) * Affine::scale(2.0);
+        back.children = vec![Node::Path(StyledPath {
+            id: "back".into(),
+            path: square(2.0, -1.0, 7.0, 4.0),
+            style: Style::default(),
+        })];
+        // The front square sits two groups deep, turned and turned back.
+        let mut nested = Group::new("nested");
+        nested.transform = Affine::rotate(0.3);
+        let mut top = Group::new("top");
+        top.transform = Affine::rotate(-0.3);
+        nested.push_group(std::mem::replace(&mut s.layers[0].content, Group::new("x")));
+        top.push_group(nested);
+        s.layers[0].content = top;
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        assert!((layer_length(&s, "back") - 30.0).abs() < 1e-9);
+        assert!((layer_length(&s, "front") - 40.0).abs() < 1e-9);
+        // In its own group's units the back path is half as long.
+        let own = path_length(&path_by_id(&s, "back").unwrap().path);
+        assert!((own - 15.0).abs() < 1e-9, "{own}");
+        assert_eq!(s.layers[0].content.children.len(), 1);
+    }
+
+    #[test]
+    fn non_finite_coordinates_are_errors_and_leave_the_scene_alone() {
+        let mut s = two_squares();
+        s.layers[1].content.transform = Affine::scale(f64::NAN);
+        let before = s.clone();
+        let e = run(&mut s, &OccludeOptions::DEFAULT).unwrap_err();
+        assert!(e.to_string().contains("occlude.paths[back]"), "{e}");
+        // NaN != NaN, so compare what can be compared.
+        assert_eq!(format!("{s:?}"), format!("{before:?}"));
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = run(&mut s, &OccludeOptions::DEFAULT.with_tolerance(bad)).unwrap_err();
+            assert!(e.to_string().starts_with("occlude.tolerance"), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_singular_group_is_left_alone() {
+        let mut s = two_squares();
+        s.layers[1].content.transform = Affine::scale_non_uniform(1.0, 0.0);
+        let before = s.clone();
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        assert_eq!(s, before);
+    }
+
+    #[test]
+    fn options_serde_round_trip_and_defaults() {
+        let o: OccludeOptions =
+            serde_json::from_str(r#"{"silhouettes": true, "skip_layers": ["bg"]}"#).unwrap();
+        assert_eq!(
+            o,
+            OccludeOptions::DEFAULT
+                .with_silhouettes(true)
+                .with_skip_layers(["bg"])
+        );
+        let back: OccludeOptions =
+            serde_json::from_str(&serde_json::to_string(&o).unwrap()).unwrap();
+        assert_eq!(back, o);
+        assert_eq!(OccludeOptions::default(), OccludeOptions::DEFAULT);
+        assert!(serde_json::from_str::<OccludeOptions>(r#"{"silhouete": true}"#).is_err());
+    }
+
+    /// A limb-like closed outline: a thin rectangle from `a` to `b`.
+    fn limb(a: Point, b: Point, width: f64) -> BezPath {
+        let d = (b - a).normalize();
+        let n = kurbo::Vec2::new(-d.y, d.x) * (0.5 * width);
+        let mut p = BezPath::new();
+        p.move_to(a + n);
+        p.line_to(b + n);
+        p.line_to(b - n);
+        p.line_to(a - n);
+        p.close_path();
+        p
+    }
+
+    fn boundary_distance(region: &Region, p: Point) -> f64 {
+        region
+            .path()
+            .segments()
+            .map(|s| s.nearest(p, 1e-9).distance_sq)
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
+
+    /// Points along every segment of a path, on the page.
+    fn samples(path: &BezPath, t: Affine) -> Vec<Point> {
+        (t * path.clone())
+            .segments()
+            .flat_map(|s| [0.25, 0.5, 0.75].map(|u| s.eval(u)))
+            .collect()
+    }
+
+    fn deep_inside(region: &Region, p: Point, tolerance: f64) -> bool {
+        region.contains(p) && boundary_distance(region, p) > tolerance + 1e-6
+    }
+
+    #[test]
+    fn silhouettes_remove_crossing_limb_outlines() {
+        let tree = || {
+            let mut set = Group::new("l.set");
+            let mut tree = Group::new("l.set.tree-0");
+            tree.push_path(
+                "l.set.tree-0.limb-0",
+                limb(Point::new(50.0, 100.0), Point::new(50.0, 40.0), 4.0),
+                Style::default(),
+            );
+            tree.push_path(
+                "l.set.tree-0.limb-1",
+                limb(Point::new(40.0, 80.0), Point::new(80.0, 50.0), 3.0),
+                Style::default(),
+            );
+            set.push_group(tree);
+            let mut top = Group::new("l.motifs");
+            top.push_group(set);
+            scene(vec![layer("l", 0, top)])
+        };
+        let union = {
+            let s = tree();
+            let mut regions = Vec::new();
+            s.visit_paths(|_, p, t| {
+                regions.push(Region::new(t * p.path.clone(), FillRule::NonZero).unwrap());
+            });
+            Region::union_all(&regions)
+        };
+        let strays = |s: &Scene| {
+            let mut n = 0;
+            s.visit_paths(|_, p, t| {
+                n += samples(&p.path, t)
+                    .into_iter()
+                    .filter(|q| deep_inside(&union, *q, TOLERANCE))
+                    .count();
+            });
+            n
+        };
+
+        // Without silhouettes the later limb's outline still crosses the
+        // trunk.
+        let mut plain = tree();
+        run(&mut plain, &OccludeOptions::DEFAULT).unwrap();
+        assert!(strays(&plain) > 0);
+
+        let mut merged = tree();
+        run(&mut merged, &OccludeOptions::DEFAULT.with_silhouettes(true)).unwrap();
+        assert_eq!(strays(&merged), 0);
+        let mut ids = Vec::new();
+        merged.visit_paths(|_, p, _| ids.push(p.id.clone()));
+        assert_eq!(ids, ["l.set.tree-0.silhouette"]);
+        // Its outline is the union's boundary.
+        let sil = &path_by_id(&merged, "l.set.tree-0.silhouette").unwrap().path;
+        let t = merged.page_transform();
+        let area = (t * sil.clone()).area().abs();
+        assert!(
+            (area - union.area()).abs() < 1e-6,
+            "{area} vs {}",
+            union.area()
+        );
+        // A layer's top group is no tree, even when it holds only paths.
+        let mut flat = scene(vec![layer(
+            "l",
+            0,
+            group_of(
+                "top",
+                vec![
+                    ("a", square(0.0, 0.0, 10.0, 10.0)),
+                    ("b", square(5.0, 5.0, 15.0, 15.0)),
+                ],
+            ),
+        )]);
+        run(&mut flat, &OccludeOptions::DEFAULT.with_silhouettes(true)).unwrap();
+        assert_eq!(flat.path_count(), 2);
+    }
+
+    #[test]
+    fn silhouettes_leave_mixed_styles_and_open_paths_alone() {
+        let mut tree = Group::new("t");
+        tree.push_path("a", square(0.0, 0.0, 10.0, 10.0), Style::default());
+        tree.push_path(
+            "open",
+            Line::new((0.0, 0.0), (30.0, 30.0)).to_path(0.0),
+            Style::default(),
+        );
+        tree.push_path("b", square(5.0, 5.0, 15.0, 15.0), Style::default());
+        let mut top = Group::new("top");
+        top.push_group(tree.clone());
+        let mut s = scene(vec![layer("l", 0, top.clone())]);
+        silhouettes_below(&mut s.layers[0].content, Affine::IDENTITY, true);
+        let mut ids = Vec::new();
+        s.visit_paths(|_, p, _| ids.push(p.id.clone()));
+        assert_eq!(ids, ["t.silhouette", "open"]);
+
+        if let Node::Group(g) = &mut top.children[0] {
+            if let Node::Path(p) = &mut g.children[2] {
+                p.style.fill = Some(Color::BLACK);
+            }
+        }
+        let mut s = scene(vec![layer("l", 0, top.clone())]);
+        silhouettes_below(&mut s.layers[0].content, Affine::IDENTITY, true);
+        assert_eq!(s.layers[0].content, top);
+    }
+
+    #[test]
+    fn the_same_input_gives_the_same_output() {
+        let make = || {
+            let mut g = Group::new("g");
+            for i in 0..30 {
+                let (x, y) = ((i % 6) as f64 * 7.0, (i / 6) as f64 * 7.0);
+                let shape = if i % 3 == 0 {
+                    Circle::new((x, y), 6.0).to_path(1e-3)
+                } else {
+                    limb(Point::new(x, y), Point::new(x + 15.0, y + 9.0), 3.0)
+                };
+                g.push_path(format!("p{i}"), shape, Style::default());
+            }
+            scene(vec![layer("l", 0, g)])
+        };
+        let mut a = make();
+        let mut b = make();
+        let o = OccludeOptions::DEFAULT.with_silhouettes(true);
+        run(&mut a, &o).unwrap();
+        run(&mut b, &o).unwrap();
+        assert_eq!(a, b);
+        assert!(a.stats().pen_down_mm < make().stats().pen_down_mm);
+    }
+
+    const TWO_LAYERS_OF_TREES: &str = r#"
+        version = 1
+        seed = 11
+        page = { size = "A5", margin = 10 }
+
+        [[layers]]
+        name = "front"
+
+        [[layers.trees]]
+        rule = "tree2"
+        count = 2
+        centre = [[20, 150], [110, 150]]
+        params = { generations = 5, trunk = 22 }
+
+        [[layers]]
+        name = "back"
+
+        [[layers.trees]]
+        rule = "tree3"
+        count = 2
+        centre = [[25, 160], [115, 160]]
+        params = { generations = 5, trunk = 24 }
+    "#;
+
+    #[test]
+    fn front_trees_hide_back_trees() {
+        use crate::spec::{Format, SceneSpec};
+        let spec = SceneSpec::parse(TWO_LAYERS_OF_TREES, Format::Toml).unwrap();
+        let built = crate::project::build_scene(&spec).unwrap();
+        for silhouettes in [false, true] {
+            let mut s = built.clone();
+            let o = OccludeOptions::DEFAULT.with_silhouettes(silhouettes);
+            run(&mut s, &o).unwrap();
+            let (before, after) = (layer_length(&built, "back"), layer_length(&s, "back"));
+            assert!(after < 0.95 * before, "{after} vs {before}");
+            // Every group is still there, ids unchanged.
+            assert_eq!(s.layers.len(), 2);
+            assert_eq!(s.layers[1].content.id, built.layers[1].content.id);
+            // No stroke of the back layer inside a front limb.
+            let mut fronts = Vec::new();
+            built.visit_paths(|l, p, t| {
+                if l.id == "front" {
+                    if let Ok(r) = Region::new(t * p.path.clone(), FillRule::NonZero) {
+                        fronts.push(r);
+                    }
+                }
+            });
+            s.visit_paths(|l, p, t| {
+                if l.id == "back" {
+                    for q in samples(&p.path, t) {
+                        assert!(!fronts.iter().any(|r| deep_inside(r, q, o.tolerance)));
+                    }
+                }
+            });
+        }
+    }
+
+    /// Timing, not asserted: `cargo test --release --lib
+    /// plot::occlude::tests::timing -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    #[allow(clippy::print_stderr)]
+    fn timing_tomesode_hem() {
+        let spec = crate::templates::get("tomesode-hem")
+            .unwrap()
+            .spec()
+            .unwrap();
+        let built = crate::project::build_scene(&spec).unwrap();
+        for silhouettes in [false, true] {
+            let mut s = built.clone();
+            let t = std::time::Instant::now();
+            run(
+                &mut s,
+                &OccludeOptions::DEFAULT.with_silhouettes(silhouettes),
+            )
+            .unwrap();
+            eprintln!(
+                "tomesode-hem, silhouettes {silhouettes}: {:?}; paths {} → {}, \
+                 pen-down {:.0} → {:.0} mm",
+                t.elapsed(),
+                built.path_count(),
+                s.path_count(),
+                built.stats().pen_down_mm,
+                s.stats().pen_down_mm
+            );
+        }
+    }
+
+    /// A random shape: a rectangle, a circle or (not occluding) a line.
+    #[derive(Debug, Clone)]
+    enum Shape0 {
+        Rect(f64, f64, f64, f64),
+        Circle(f64, f64, f64),
+        Line(f64, f64, f64, f64),
+    }
+
+    fn arb_shape() -> impl Strategy<Value = Shape0> {
+        let c = 0.0..60.0f64;
+        prop_oneof![
+            (c.clone(), c.clone(), 1.0..30.0f64, 1.0..30.0f64)
+                .prop_map(|(x, y, w, h)| Shape0::Rect(x, y, x + w, y + h)),
+            (c.clone(), c.clone(), 1.0..20.0f64).prop_map(|(x, y, r)| Shape0::Circle(x, y, r)),
+            (c.clone(), c.clone(), c.clone(), c).prop_map(|(a, b, x, y)| Shape0::Line(a, b, x, y)),
+        ]
+    }
+
+    fn shape_path(s: &Shape0) -> BezPath {
+        match *s {
+            Shape0::Rect(x0, y0, x1, y1) => square(x0, y0, x1, y1),
+            Shape0::Circle(x, y, r) => Circle::new((x, y), r).to_path(1e-4),
+            Shape0::Line(a, b, x, y) => Line::new((a, b), (x, y)).to_path(0.0),
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// No stroke kept by occlusion passes through the interior of a
+        /// shape in front of it.
+        #[test]
+        fn no_kept_stroke_lies_inside_a_shape_in_front(
+            shapes in prop::collection::vec((arb_shape(), 0usize..3, any::<bool>()), 1..9),
+            depths in prop::collection::vec(-2i32..3, 3),
+            angle in -0.5..0.5f64,
+            scale in 0.5..2.0f64,
+        ) {
+            let mut layers: Vec<Layer> = (0..3)
+                .map(|k| layer(&format!("l{k}"), depths[k], Group::new(format!("g{k}"))))
+                .collect();
+            layers[1].content.transform = Affine::rotate(angle) * Affine::scale(scale);
+            for (i, (shape, l, filled)) in shapes.iter().enumerate() {
+                let style = Style { fill: filled.then_some(Color::BLACK) };
+                let inverse = layers[*l].content.transform.inverse();
+                layers[*l].content.push_path(format!("s{i}"), inverse * shape_path(shape), style);
+            }
+            let original = scene(layers);
+            // Paint order and front shapes, from the original scene.
+            let mut rank: HashMap<String, usize> = HashMap::new();
+            let mut regions: Vec<Option<Region>> = Vec::new();
+            let page = original.page_transform();
+            for l in original.layers_back_to_front() {
+                l.content.visit_paths(page, &mut |p, t| {
+                    rank.insert(p.id.clone(), regions.len());
+                    let closed = !matches!(p.path.elements().last(), Some(PathEl::LineTo(_)));
+                    regions.push(if closed || p.style.fill.is_some() {
+                        Region::new(t * p.path.clone(), FillRule::NonZero).ok()
+                    } else {
+                        None
+                    });
+                });
+            }
+            let mut s = original.clone();
+            let o = OccludeOptions::DEFAULT;
+            run(&mut s, &o).unwrap();
+            let mut failures = Vec::new();
+            s.visit_paths(|_, p, t| {
+                let me = rank[&p.id];
+                for q in samples(&p.path, t) {
+                    for (k, r) in regions.iter().enumerate().skip(me + 1) {
+                        if let Some(r) = r {
+                            if deep_inside(r, q, o.tolerance) {
+                                failures.push(format!("{} at {q:?} inside shape {k}", p.id));
+                            }
+                        }
+                    }
+                }
+            });
+            prop_assert!(failures.is_empty(), "{failures:?}");
+            prop_assert!(s.stats().pen_down_mm <= original.stats().pen_down_mm + 1e-6);
+            // The frontmost path is never touched.
+            let last = rank.iter().max_by_key(|(_, r)| **r).map(|(id, _)| id.clone()).unwrap();
+            prop_assert_eq!(path_by_id(&s, &last), path_by_id(&original, &last));
+        }
+    }
+}
+#[cfg(test)]
+mod prof_tmp {
+    use super::*;
+    #[test]
+    #[ignore]
+    #[allow(clippy::print_stderr)]
+    fn prof() {
+        let spec = crate::templates::get("tomesode-hem").unwrap().spec().unwrap();
+        let built = crate::project::build_scene(&spec).unwrap();
+        for sil in [false, true] {
+            let mut s = built.clone();
+            let page = s.page_transform();
+            let t = std::time::Instant::now();
+            if sil {
+                for l in &mut s.layers {
+                    silhouettes_below(&mut l.content, page, true);
+                }
+            }
+            let t_sil = t.elapsed();
+            let order: Vec<usize> = s.layers_back_to_front().into_iter().filter_map(|l| s.layers.iter().position(|x| std::ptr::eq(x, l))).collect();
+            let mut painted = Vec::new();
+            for &li in &order { collect(&s.layers[li].content, page, li, &mut painted).unwrap(); }
+            let t = std::time::Instant::now();
+            let o = OccludeOptions::DEFAULT;
+            let occluders: Vec<Occluder> = painted.iter().enumerate().filter_map(|(paint, p)| { let region = occluding_region(p, &o)?; Some(Occluder { paint, bounds: region.bounds(), region }) }).collect();
+            let t_occ = t.elapsed();
+            let t = std::time::Instant::now();
+            let out = hide(&painted, &occluders, o.tolerance);
+            let t_hide = t.elapsed();
+            let segs: usize = occluders.iter().map(|o| o.region.path().elements().len()).sum();
+            let t = std::time::Instant::now();
+            let out2 = hide_seq(&painted, &occluders, o.tolerance);
+            let t_seq = t.elapsed();
+            let len = |v: &[Outcome]| v.iter().zip(&painted).map(|(o, p)| match o { Outcome::Keep => path_length(&p.page), Outcome::Cut(q) => path_length(&(p.to_page * q.clone())), Outcome::Remove => 0.0 }).sum::<f64>();
+            eprintln!("seq {t_seq:?} len union {} seq {}", len(&out), len(&out2));
+            eprintln!("sil {sil}: silhouettes {t_sil:?}, {} occluders ({segs} els) {t_occ:?}, hide {t_hide:?}, cut {}", occluders.len(), out.iter().filter(|o| matches!(o, Outcome::Cut(_))).count());
+        }
+    }
+}
+
+#[cfg(test)]
+fn hide_seq(painted: &[Painted], occluders: &[Occluder], tolerance: f64) -> Vec<Outcome> {
+    let tree = RTree::bulk_load(occluders.iter().enumerate().map(|(k, oc)| { let e = envelope(oc.bounds); GeomWithData::new(Rectangle::from_corners(e.lower(), e.upper()), k) }).collect());
+    let clippers: Vec<std::cell::OnceCell<StrokeClipper>> = occluders.iter().map(|_| std::cell::OnceCell::new()).collect();
+    painted.iter().enumerate().map(|(paint, p)| {
+        let segment_boxes: Vec<Rect> = p.page.segments().map(|s| s.bounding_box()).collect();
+        let Some(bounds) = segment_boxes.iter().copied().reduce(|a, b| a.union(b)) else { return Outcome::Keep; };
+        let mut front: Vec<usize> = tree.locate_in_envelope_intersecting(&envelope(bounds)).map(|g| g.data).filter(|&k| occluders[k].paint > paint && segment_boxes.iter().any(|s| overlaps(*s, occluders[k].bounds))).collect();
+        if front.is_empty() { return Outcome::Keep; }
+        front.sort_unstable();
+        let mut pieces = vec![p.page.clone()];
+        let mut cut = false;
+        for k in front {
+            let c = clippers[k].get_or_init(|| StrokeClipper::new(&occluders[k].region, tolerance));
+            let mut next = Vec::new();
+            for piece in &pieces {
+                let r = c.clip(piece);
+                if !r.inside.is_empty() { cut = true; }
+                next.extend(r.outside);
+            }
+            pieces = next;
+            if pieces.is_empty() { break; }
+        }
+        if !cut { return Outcome::Keep; }
+        let mut visible = BezPath::new();
+        for piece in pieces { if path_length(&piece) >= tolerance { visible.extend(piece); } }
+        if visible.elements().is_empty() { return Outcome::Remove; }
+        Outcome::Cut(p.to_page.inverse() * visible)
+    }).collect()
+}

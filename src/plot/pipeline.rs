@@ -1,0 +1,160 @@
+//! The plot pipeline in its fixed order, every stage optional:
+//!
+//! transform → occlude → hatch → (one layer per pen) → merge → simplify →
+//! sort → multipass.
+//!
+//! Geometry is transformed first so that hatch spacing and tolerances are
+//! measured on the final page; hidden lines are removed while the depth
+//! layers still exist; hatching comes after occlusion so hatch lines of a
+//! back shape are not drawn and then cut; the per-pen stages work on one
+//! flat layer per pen, which is what a plotter runs.
+
+use serde::{Deserialize, Serialize};
+
+use super::{
+    flatten, hatch, merge, multipass, occlude, simplify, sort, transform, HatchOptions,
+    MergeOptions, MultipassOptions, OccludeOptions, SimplifyOptions, SortOptions,
+    TransformOptions,
+};
+use crate::error::{Error, Result};
+use crate::scene::Scene;
+
+/// Which stages run, with their options. `None` (absent in a file) skips a
+/// stage; an empty table runs it with its defaults.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlotOptions {
+    /// Rotate, scale, fit to the page, centre.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transform: Option<TransformOptions>,
+    /// Remove strokes hidden behind closed shapes in front.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub occlude: Option<OccludeOptions>,
+    /// Turn fills into hatch lines.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hatch: Option<HatchOptions>,
+    /// Join paths whose ends meet.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub merge: Option<MergeOptions>,
+    /// Drop points within a tolerance.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub simplify: Option<SimplifyOptions>,
+    /// Order paths to shorten pen-up travel.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sort: Option<SortOptions>,
+    /// Draw every path several times.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multipass: Option<MultipassOptions>,
+}
+
+fn finite_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<()> {
+    if lo <= v && v <= hi {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            field,
+            format!("must be between {lo} and {hi}, got {v}"),
+        ))
+    }
+}
+
+impl PlotOptions {
+    /// True when no stage runs.
+    pub fn is_empty(&self) -> bool {
+        *self == PlotOptions::default()
+    }
+
+    /// True when a stage needs one flat layer per pen.
+    fn per_pen(&self) -> bool {
+        self.merge.is_some()
+            || self.simplify.is_some()
+            || self.sort.is_some()
+            || self.multipass.is_some()
+    }
+
+    /// Checks every option's range; `field` prefixes the error paths
+    /// (`plot` in a scene description).
+    pub fn validate(&self, field: &str) -> Result<()> {
+        if let Some(t) = &self.transform {
+            finite_range(&format!("{field}.transform.rotate_deg"), t.rotate_deg, -360.0, 360.0)?;
+            finite_range(&format!("{field}.transform.scale"), t.scale, 1e-3, 1e3)?;
+            if let Some(m) = t.margin {
+                finite_range(&format!("{field}.transform.margin"), m, 0.0, 1000.0)?;
+            }
+        }
+        if let Some(o) = &self.occlude {
+            finite_range(&format!("{field}.occlude.tolerance"), o.tolerance, 1e-4, 1.0)?;
+        }
+        if let Some(h) = &self.hatch {
+            h.validate()
+                .map_err(|e| prefix(e, &format!("{field}.hatch")))?;
+        }
+        if let Some(m) = &self.merge {
+            finite_range(&format!("{field}.merge.tolerance"), m.tolerance, 0.0, 10.0)?;
+        }
+        if let Some(s) = &self.simplify {
+            finite_range(&format!("{field}.simplify.tolerance"), s.tolerance, 0.0, 10.0)?;
+        }
+        if let Some(s) = &self.sort {
+            if s.window > 10_000 || s.max_passes > 1_000 {
+                return Err(Error::invalid(
+                    format!("{field}.sort"),
+                    "window must be at most 10000 and max_passes at most 1000",
+                ));
+            }
+        }
+        if let Some(m) = &self.multipass {
+            if !(1..=100).contains(&m.passes) {
+                return Err(Error::invalid(
+                    format!("{field}.multipass.passes"),
+                    format!("must be between 1 and 100, got {}", m.passes),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Puts `prefix.` before the field of an [`Error::Invalid`].
+fn prefix(e: Error, prefix: &str) -> Error {
+    match e {
+        Error::Invalid { at, field, message } => Error::Invalid {
+            at,
+            field: format!("{prefix}.{field}"),
+            message,
+        },
+        e => e,
+    }
+}
+
+/// Runs the configured stages. Without per-pen stages the scene keeps its
+/// layers, groups and ids; with them it becomes one flat layer per pen.
+pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
+    o.validate("plot")?;
+    if let Some(t) = &o.transform {
+        transform::apply(&mut scene, t);
+    }
+    if let Some(occ) = &o.occlude {
+        occlude::run(&mut scene, occ)?;
+    }
+    if let Some(h) = &o.hatch {
+        hatch::run(&mut scene, h)?;
+    }
+    if !o.per_pen() {
+        return Ok(scene);
+    }
+    let mut flat = flatten::by_pen(&scene);
+    if let Some(m) = &o.merge {
+        merge::run(&mut flat, m);
+    }
+    if let Some(s) = &o.simplify {
+        simplify::run(&mut flat, s);
+    }
+    if let Some(s) = &o.sort {
+        sort::run(&mut flat, s);
+    }
+    if let Some(m) = &o.multipass {
+        multipass::run(&mut flat, m);
+    }
+    Ok(flat)
+}

@@ -1,0 +1,345 @@
+//! Plot statistics: how much the pen draws, how far it travels lifted, and
+//! how long the plot takes.
+//!
+//! The figures are those of the plot the SVG describes, in the file's
+//! order: [`stats`] looks at the scene as the SVG writer lays it out, one
+//! layer per pen in ascending pen number with its scene layers back to
+//! front (exactly [`super::flatten::by_pen`]), and at the paths in that
+//! order, in page coordinates.
+//!
+//! - **Pen-down length**: the arc length of every segment (move-tos lift
+//!   the pen), as [`crate::scene::path_length`].
+//! - **Pen-up length**: straight moves from the origin (0, 0), the
+//!   plotter's home at the top-left corner of the sheet, to the start of
+//!   the first subpath, and from the end of each subpath to the start of
+//!   the next ([`pen_up_length`]). Each layer starts from the origin: a
+//!   plotter runs the layers one after another with a pause for a pen
+//!   change in between, returning home (as the AxiDraw does with layer
+//!   pauses). The move home at the end of a layer is not counted.
+//! - **Pen lifts**: one per subpath that draws something (a path with two
+//!   subpaths lifts the pen twice).
+//! - **Plot time**, with the [`Speeds`]:
+//!   `pen_down_mm / pen_down_mm_s + pen_up_mm / pen_up_mm_s + pen_lifts ·
+//!   pen_lift_s`. Acceleration is ignored, so real plots of many tiny paths
+//!   take longer; pen changes between layers are not counted.
+
+use kurbo::{BezPath, PathEl, Point};
+use serde::{Deserialize, Serialize};
+
+use super::flatten::{by_pen, el_end};
+use crate::scene::{path_length, Node, Scene};
+
+/// Plotter speeds for the time estimate of [`stats`].
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Speeds {
+    /// Drawing speed, mm/s.
+    pub pen_down_mm_s: f64,
+    /// Travel speed with the pen up, mm/s.
+    pub pen_up_mm_s: f64,
+    /// Time for one pen lift (raising and lowering once), s.
+    pub pen_lift_s: f64,
+}
+
+impl Speeds {
+    /// 25 mm/s drawing, 75 mm/s travel, 0.15 s per pen lift: an AxiDraw
+    /// at moderate settings.
+    pub const DEFAULT: Speeds = Speeds {
+        pen_down_mm_s: 25.0,
+        pen_up_mm_s: 75.0,
+        pen_lift_s: 0.15,
+    };
+
+    /// These speeds with [`Speeds::pen_down_mm_s`] set.
+    pub const fn with_pen_down_mm_s(mut self, v: f64) -> Speeds {
+        self.pen_down_mm_s = v;
+        self
+    }
+
+    /// These speeds with [`Speeds::pen_up_mm_s`] set.
+    pub const fn with_pen_up_mm_s(mut self, v: f64) -> Speeds {
+        self.pen_up_mm_s = v;
+        self
+    }
+
+    /// These speeds with [`Speeds::pen_lift_s`] set.
+    pub const fn with_pen_lift_s(mut self, v: f64) -> Speeds {
+        self.pen_lift_s = v;
+        self
+    }
+
+    /// Seconds to draw `down` mm, travel `up` mm and lift the pen `lifts`
+    /// times.
+    pub fn time(&self, down: f64, up: f64, lifts: usize) -> f64 {
+        down / self.pen_down_mm_s + up / self.pen_up_mm_s + lifts as f64 * self.pen_lift_s
+    }
+}
+
+impl Default for Speeds {
+    fn default() -> Speeds {
+        Speeds::DEFAULT
+    }
+}
+
+/// Figures of one plotted layer (one pen).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LayerStats {
+    /// Layer id (`pen-N`).
+    pub id: String,
+    /// The pen's name.
+    pub name: String,
+    /// Pen number.
+    pub pen: u32,
+    /// Number of paths.
+    pub paths: usize,
+    /// Number of pen lifts (subpaths that draw).
+    pub pen_lifts: usize,
+    /// Length drawn, mm.
+    pub pen_down_mm: f64,
+    /// Length travelled with the pen up, from the origin, mm.
+    pub pen_up_mm: f64,
+    /// Estimated time, s.
+    pub plot_time_s: f64,
+}
+
+/// Figures of a whole plot: totals over the layers, and each layer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlotStats {
+    /// Number of paths.
+    pub paths: usize,
+    /// Number of pen lifts.
+    pub pen_lifts: usize,
+    /// Length drawn, mm.
+    pub pen_down_mm: f64,
+    /// Length travelled with the pen up, mm (the sum over the layers).
+    pub pen_up_mm: f64,
+    /// Estimated time, s (the sum over the layers).
+    pub plot_time_s: f64,
+    /// Per layer, in plotting order.
+    pub layers: Vec<LayerStats>,
+}
+
+/// The statistics of `scene` as plotted (see the module documentation).
+pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
+    let flat = by_pen(scene);
+    let mut total = PlotStats {
+        paths: 0,
+        pen_lifts: 0,
+        pen_down_mm: 0.0,
+        pen_up_mm: 0.0,
+        plot_time_s: 0.0,
+        layers: Vec::with_capacity(flat.layers.len()),
+    };
+    for layer in &flat.layers {
+        let paths: Vec<&BezPath> = layer
+            .content
+            .children
+            .iter()
+            .filter_map(|n| match n {
+                Node::Path(p) => Some(&p.path),
+                Node::Group(_) => None,
+            })
+            .collect();
+        let pen_down_mm: f64 = paths.iter().map(|p| path_length(p)).sum();
+        let (pen_up_mm, pen_lifts) = travel(paths.iter().copied());
+        let s = LayerStats {
+            id: layer.id.clone(),
+            name: layer.name.clone(),
+            pen: layer.pen,
+            paths: paths.len(),
+            pen_lifts,
+            pen_down_mm,
+            pen_up_mm,
+            plot_time_s: speeds.time(pen_down_mm, pen_up_mm, pen_lifts),
+        };
+        total.paths += s.paths;
+        total.pen_lifts += s.pen_lifts;
+        total.pen_down_mm += s.pen_down_mm;
+        total.pen_up_mm += s.pen_up_mm;
+        total.plot_time_s += s.plot_time_s;
+        total.layers.push(s);
+    }
+    total
+}
+
+/// Pen-up travel of drawing `paths` in this order, starting from the
+/// origin: straight moves to the start of every subpath that draws, from
+/// where the previous one ended (a closed subpath ends at its start).
+pub fn pen_up_length<'a>(paths: impl IntoIterator<Item = &'a BezPath>) -> f64 {
+    travel(paths).0
+}
+
+/// Pen-up length and number of pen lifts.
+fn travel<'a>(paths: impl IntoIterator<Item = &'a BezPath>) -> (f64, usize) {
+    /// Where the reading of a path stands.
+    #[derive(PartialEq)]
+    enum State {
+        /// After a move-to: nothing drawn yet.
+        Moved,
+        /// Drawing a subpath.
+        Drawing,
+        /// After a close-path (or before anything): drawing again starts a
+        /// new subpath at `start`; closing again draws nothing.
+        Closed,
+    }
+    let mut pen = Point::ORIGIN;
+    let mut up = 0.0;
+    let mut lifts = 0;
+    for path in paths {
+        let mut state = State::Closed;
+        let mut start = pen;
+        for &el in path.elements() {
+            match el {
+                PathEl::MoveTo(p) => {
+                    start = p;
+                    state = State::Moved;
+                }
+                PathEl::ClosePath => {
+                    if state == State::Moved {
+                        // `M p Z` draws a dot.
+                        up += pen.distance(start);
+                        lifts += 1;
+                    }
+                    if state != State::Closed {
+                        pen = start;
+                    }
+                    state = State::Closed;
+                }
+                _ => {
+                    if state != State::Drawing {
+                        up += pen.distance(start);
+                        lifts += 1;
+                        state = State::Drawing;
+                    }
+                    pen = el_end(el);
+                }
+            }
+        }
+    }
+    (up, lifts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Color, Group, Layer, Pen, Style};
+    use crate::units::{Margins, Orientation, Page, PaperName};
+    use kurbo::{Affine, Line, Shape};
+
+    fn line(a: (f64, f64), b: (f64, f64)) -> BezPath {
+        Line::new(a, b).into_path(0.1)
+    }
+
+    #[test]
+    fn travel_counts_subpaths_and_closes() {
+        let mut p = BezPath::new();
+        p.move_to((3.0, 4.0)); // 5 from the origin
+        p.line_to((13.0, 4.0));
+        p.line_to((13.0, 14.0));
+        p.close_path(); // back at (3,4)
+        p.close_path(); // nothing
+        p.line_to((3.0, 10.0)); // new subpath from (3,4): no travel
+        p.move_to((100.0, 100.0)); // lone move-to: nothing
+        p.move_to((3.0, 13.0)); // 3 from (3,10)
+        p.line_to((0.0, 13.0));
+        let (up, lifts) = travel([&p]);
+        assert!((up - 8.0).abs() < 1e-12, "{up}");
+        assert_eq!(lifts, 3);
+        let q = line((0.0, 17.0), (0.0, 20.0)); // 4 from (0,13)
+        assert!((pen_up_length([&p, &q]) - 12.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn stats_of_a_small_scene() {
+        // Pen 1: two layers; the back one (depth 2) is plotted first.
+        let mut back = Group::new("back");
+        back.push_path("b", line((0.0, 0.0), (30.0, 0.0)), Style::default());
+        let mut front = Group::new("front");
+        front.transform = Affine::scale(2.0);
+        front.push_path("f", line((15.0, 20.0), (15.0, 25.0)), Style::default());
+        // Pen 2: one path.
+        let mut other = Group::new("other");
+        other.push_path("o", line((0.0, 10.0), (0.0, 0.0)), Style::default());
+        let scene = Scene {
+            page: Page::named(PaperName::A4, Orientation::Portrait, Margins::uniform(10.0)),
+            pens: vec![Pen {
+                number: 1,
+                name: "black".into(),
+                color: Color::BLACK,
+                width: 0.3,
+            }],
+            layers: vec![
+                Layer {
+                    id: "front".into(),
+                    name: "front".into(),
+                    pen: 1,
+                    depth: 0,
+                    content: front,
+                },
+                Layer {
+                    id: "other".into(),
+                    name: "other".into(),
+                    pen: 2,
+                    depth: 0,
+                    content: other,
+                },
+                Layer {
+                    id: "back".into(),
+                    name: "back".into(),
+                    pen: 1,
+                    depth: 2,
+                    content: back,
+                },
+            ],
+            description: None,
+        };
+        let speeds = Speeds::DEFAULT
+            .with_pen_down_mm_s(10.0)
+            .with_pen_up_mm_s(20.0)
+            .with_pen_lift_s(1.0);
+        let s = stats(&scene, &speeds);
+        // Page coordinates: b (10,10)→(40,10); f (40,50)→(40,60); o (10,20)→(10,10).
+        let l1 = &s.layers[0];
+        assert_eq!(
+            (l1.id.as_str(), l1.name.as_str(), l1.pen),
+            ("pen-1", "black", 1)
+        );
+        assert_eq!((l1.paths, l1.pen_lifts), (2, 2));
+        assert!((l1.pen_down_mm - 40.0).abs() < 1e-9);
+        let up1 = 200f64.sqrt() + 40.0;
+        assert!((l1.pen_up_mm - up1).abs() < 1e-9);
+        assert!((l1.plot_time_s - (4.0 + up1 / 20.0 + 2.0)).abs() < 1e-9);
+        let l2 = &s.layers[1];
+        assert_eq!((l2.id.as_str(), l2.name.as_str(), l2.pen), ("pen-2", "", 2));
+        let up2 = 500f64.sqrt();
+        assert!((l2.pen_up_mm - up2).abs() < 1e-9);
+        assert_eq!(s.paths, 3);
+        assert_eq!(s.pen_lifts, 3);
+        assert!((s.pen_down_mm - 50.0).abs() < 1e-9);
+        assert!((s.pen_up_mm - (up1 + up2)).abs() < 1e-9);
+        assert!((s.plot_time_s - (l1.plot_time_s + l2.plot_time_s)).abs() < 1e-9);
+
+        let json = serde_json::to_value(&s).unwrap();
+        for key in ["paths", "pen_down_mm", "pen_up_mm", "plot_time_s"] {
+            assert!(json[key].is_number(), "{key}");
+        }
+        assert_eq!(json["layers"][1]["id"], "pen-2");
+    }
+
+    #[test]
+    fn empty_scene_has_zero_stats() {
+        let scene = Scene {
+            page: Page::named(PaperName::A5, Orientation::Portrait, Margins::default()),
+            pens: vec![],
+            layers: vec![],
+            description: None,
+        };
+        let s = stats(&scene, &Speeds::default());
+        assert_eq!(
+            (s.paths, s.pen_down_mm, s.pen_up_mm, s.plot_time_s),
+            (0, 0.0, 0.0, 0.0)
+        );
+        assert!(s.layers.is_empty());
+    }
+}
