@@ -23,8 +23,11 @@ def main():
     count = 0
     last = None
     for element in svg.elements():
-        if not isinstance(element, svgelements.Path):
+        if not isinstance(element, svgelements.Shape):
             continue
+        # vpype writes <polyline>, moyo <path>: measure both as paths.
+        if not isinstance(element, svgelements.Path):
+            element = svgelements.Path(element)
         for sub in element.as_subpaths():
             sub = svgelements.Path(sub)
             if len(sub) == 0:

@@ -189,7 +189,7 @@ fn render_named_template() {
     let svg = read_text(&dir.path().join("rules.svg"));
     for n in 1..=8 {
         assert!(
-            svg.contains(&format!("id=\"rules.tree{n}.tree-0.limb-0\"")),
+            svg.contains(&format!("id=\"rules.tree{n}.tree-0.silhouette\"")),
             "tree{n} missing"
         );
     }

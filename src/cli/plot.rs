@@ -53,13 +53,23 @@ pub(crate) struct PlotArgs {
     #[arg(long, value_name = "SPACING", help_heading = "Stages")]
     hatch: Option<f64>,
     /// Hatch angle in degrees.
-    #[arg(long, default_value_t = 45.0, requires = "hatch", help_heading = "Stages")]
+    #[arg(
+        long,
+        default_value_t = 45.0,
+        requires = "hatch",
+        help_heading = "Stages"
+    )]
     hatch_angle: f64,
     /// Cross-hatch (a second set of lines at 90°).
     #[arg(long, requires = "hatch", help_heading = "Stages")]
     cross: bool,
     /// Keep hatch lines this far inside the outline (mm).
-    #[arg(long, default_value_t = 0.0, requires = "hatch", help_heading = "Stages")]
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        requires = "hatch",
+        help_heading = "Stages"
+    )]
     hatch_inset: f64,
     /// Join paths whose ends are within TOL mm (default 0.05).
     #[arg(long, value_name = "TOL", num_args = 0..=1, default_missing_value = "0.05", help_heading = "Stages")]
@@ -118,7 +128,12 @@ pub(crate) struct PlotArgs {
     #[arg(long, default_value_t = 4000.0, help_heading = "G-code")]
     travel_feed: f64,
     /// G-code: where the machine's origin is on the page.
-    #[arg(long, value_enum, default_value = "bottom-left", help_heading = "G-code")]
+    #[arg(
+        long,
+        value_enum,
+        default_value = "bottom-left",
+        help_heading = "G-code"
+    )]
     origin: OriginArg,
     /// G-code: negate machine Y.
     #[arg(long, help_heading = "G-code")]
@@ -128,10 +143,20 @@ pub(crate) struct PlotArgs {
     #[arg(long, help_heading = "HPGL")]
     cutter: bool,
     /// HPGL cutter: cut past the start of closed outlines, mm.
-    #[arg(long, default_value_t = 1.0, requires = "cutter", help_heading = "HPGL")]
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        requires = "cutter",
+        help_heading = "HPGL"
+    )]
     overcut: f64,
     /// HPGL cutter: drag-knife blade offset, mm.
-    #[arg(long, default_value_t = 0.25, requires = "cutter", help_heading = "HPGL")]
+    #[arg(
+        long,
+        default_value_t = 0.25,
+        requires = "cutter",
+        help_heading = "HPGL"
+    )]
     knife_offset: f64,
     /// HPGL: mirror left–right (cutting on the back of the media).
     #[arg(long, help_heading = "HPGL")]
@@ -160,7 +185,9 @@ impl SpeedArgs {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(CliError::Message(format!("--{name} must be a positive number, got {v}")))
+                Err(CliError::Message(format!(
+                    "--{name} must be a positive number, got {v}"
+                )))
             }
         };
         positive("speed-down", self.speed_down)?;
@@ -203,8 +230,8 @@ fn load_svg(path: &Path) -> Result<Scene, CliError> {
 
 impl PlotArgs {
     fn plot_options(&self) -> PlotOptions {
-        let transform = (self.fit || self.centre || self.scale != 1.0 || self.rotate != 0.0)
-            .then(|| {
+        let transform =
+            (self.fit || self.centre || self.scale != 1.0 || self.rotate != 0.0).then(|| {
                 let mut t = TransformOptions::DEFAULT;
                 t.fit = self.fit;
                 t.centre = self.centre;
@@ -319,7 +346,10 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
             } else {
                 scene.clone()
             };
-            Some(render_png(&to_svg(&preview, &SvgOptions::DEFAULT), args.dpi)?)
+            Some(render_png(
+                &to_svg(&preview, &SvgOptions::DEFAULT),
+                args.dpi,
+            )?)
         }
         None => None,
     };
@@ -347,17 +377,19 @@ fn with_travel(scene: &Scene) -> Scene {
     let mut travel = BezPath::new();
     for layer in &flat.layers {
         let mut at = Point::ZERO;
-        layer.content.visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
-            let path = t * p.path.clone();
-            for sub in plot::flatten::subpaths(&path) {
-                let (Some(start), Some(end)) = (first_point(&sub), last_point(&sub)) else {
-                    continue;
-                };
-                travel.move_to(at);
-                travel.line_to(start);
-                at = end;
-            }
-        });
+        layer
+            .content
+            .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+                let path = t * p.path.clone();
+                for sub in plot::flatten::subpaths(&path) {
+                    let (Some(start), Some(end)) = (first_point(&sub), last_point(&sub)) else {
+                        continue;
+                    };
+                    travel.move_to(at);
+                    travel.line_to(start);
+                    at = end;
+                }
+            });
     }
     let number = flat.pens.iter().map(|p| p.number).max().unwrap_or(0) + 1;
     let mut out = flat;
@@ -427,10 +459,24 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     )
     .map_err(stdout_error)?;
     for l in &s.layers {
-        row(&mut out, &l.name, l.paths, l.pen_down_mm, l.pen_up_mm, l.plot_time_s)
-            .map_err(stdout_error)?;
-    }
-    row(&mut out, "total", s.paths, s.pen_down_mm, s.pen_up_mm, s.plot_time_s)
+        row(
+            &mut out,
+            &l.name,
+            l.paths,
+            l.pen_down_mm,
+            l.pen_up_mm,
+            l.plot_time_s,
+        )
         .map_err(stdout_error)?;
+    }
+    row(
+        &mut out,
+        "total",
+        s.paths,
+        s.pen_down_mm,
+        s.pen_up_mm,
+        s.plot_time_s,
+    )
+    .map_err(stdout_error)?;
     Ok(())
 }

@@ -97,7 +97,9 @@ pub fn offset(region: &Region, distance: f64, tolerance: f64) -> Result<Region> 
     // Parts thinner than `tolerance` on average are mostly the offset's own
     // error and are dropped: the round joins are inscribed polygons, so a
     // shape shrunk by exactly its inradius would otherwise leave a dot.
-    Ok(Region::from_normalised(path_from_shapes(&shapes, tolerance)))
+    Ok(Region::from_normalised(path_from_shapes(
+        &shapes, tolerance,
+    )))
 }
 
 /// Twice the signed area of a closed polygon (positive for outer contours

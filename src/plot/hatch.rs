@@ -721,6 +721,34 @@ mod tests {
         assert!(run(&mut scene, &HatchOptions::DEFAULT.with_spacing(0.0)).is_err());
     }
 
+    /// Performance sanity, not asserted: `cargo test --release --lib
+    /// hatch_a_page_of_blobs -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    #[allow(clippy::print_stderr)]
+    fn hatch_a_page_of_blobs() {
+        let blobs: Vec<Region> = (0..300)
+            .map(|i| {
+                let (x, y) = ((i % 15) as f64 * 13.0, (i / 15) as f64 * 14.0);
+                circle(x + (i % 4) as f64, y, 5.0 + (i % 6) as f64)
+            })
+            .collect();
+        let field = Region::union_all(&blobs);
+        let o = HatchOptions::DEFAULT.with_spacing(0.5).with_cross(true);
+        let t = std::time::Instant::now();
+        let lines = hatch_region(&field, &o).unwrap();
+        let segments: usize = lines.iter().map(|l| l.segments().count()).sum();
+        eprintln!(
+            "hatched {:.0} mm² (bounds {:?}) in {:?}: {} paths, {} segments, {:.0} mm of ink",
+            field.area(),
+            field.bounds(),
+            t.elapsed(),
+            lines.len(),
+            segments,
+            lines.iter().map(path_length).sum::<f64>()
+        );
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(48))]
 

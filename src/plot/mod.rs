@@ -8,10 +8,10 @@ pub mod hatch;
 pub mod merge;
 pub mod multipass;
 pub mod occlude;
+pub mod pipeline;
 pub mod simplify;
 pub mod sort;
 pub mod stats;
-pub mod pipeline;
 pub mod transform;
 
 pub use hatch::HatchOptions;

@@ -1,20 +1,20 @@
 //! The plot pipeline in its fixed order, every stage optional:
 //!
-//! transform → occlude → hatch → (one layer per pen) → merge → simplify →
+//! transform → hatch → occlude → (one layer per pen) → merge → simplify →
 //! sort → multipass.
 //!
 //! Geometry is transformed first so that hatch spacing and tolerances are
-//! measured on the final page; hidden lines are removed while the depth
-//! layers still exist; hatching comes after occlusion so hatch lines of a
-//! back shape are not drawn and then cut; the per-pen stages work on one
-//! flat layer per pen, which is what a plotter runs.
+//! measured on the final page; fills become hatch lines before hidden lines
+//! are removed, so the hatching of a back shape is hidden like any other
+//! stroke while its closed outline still hides what lies behind it; hidden
+//! lines are removed while the depth layers still exist; the per-pen stages
+//! work on one flat layer per pen, which is what a plotter runs.
 
 use serde::{Deserialize, Serialize};
 
 use super::{
     flatten, hatch, merge, multipass, occlude, simplify, sort, transform, HatchOptions,
-    MergeOptions, MultipassOptions, OccludeOptions, SimplifyOptions, SortOptions,
-    TransformOptions,
+    MergeOptions, MultipassOptions, OccludeOptions, SimplifyOptions, SortOptions, TransformOptions,
 };
 use crate::error::{Error, Result};
 use crate::scene::Scene;
@@ -76,14 +76,24 @@ impl PlotOptions {
     /// (`plot` in a scene description).
     pub fn validate(&self, field: &str) -> Result<()> {
         if let Some(t) = &self.transform {
-            finite_range(&format!("{field}.transform.rotate_deg"), t.rotate_deg, -360.0, 360.0)?;
+            finite_range(
+                &format!("{field}.transform.rotate_deg"),
+                t.rotate_deg,
+                -360.0,
+                360.0,
+            )?;
             finite_range(&format!("{field}.transform.scale"), t.scale, 1e-3, 1e3)?;
             if let Some(m) = t.margin {
                 finite_range(&format!("{field}.transform.margin"), m, 0.0, 1000.0)?;
             }
         }
         if let Some(o) = &self.occlude {
-            finite_range(&format!("{field}.occlude.tolerance"), o.tolerance, 1e-4, 1.0)?;
+            finite_range(
+                &format!("{field}.occlude.tolerance"),
+                o.tolerance,
+                1e-4,
+                1.0,
+            )?;
         }
         if let Some(h) = &self.hatch {
             h.validate()
@@ -93,7 +103,12 @@ impl PlotOptions {
             finite_range(&format!("{field}.merge.tolerance"), m.tolerance, 0.0, 10.0)?;
         }
         if let Some(s) = &self.simplify {
-            finite_range(&format!("{field}.simplify.tolerance"), s.tolerance, 0.0, 10.0)?;
+            finite_range(
+                &format!("{field}.simplify.tolerance"),
+                s.tolerance,
+                0.0,
+                10.0,
+            )?;
         }
         if let Some(s) = &self.sort {
             if s.window > 10_000 || s.max_passes > 1_000 {
@@ -134,11 +149,11 @@ pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
     if let Some(t) = &o.transform {
         transform::apply(&mut scene, t);
     }
-    if let Some(occ) = &o.occlude {
-        occlude::run(&mut scene, occ)?;
-    }
     if let Some(h) = &o.hatch {
         hatch::run(&mut scene, h)?;
+    }
+    if let Some(occ) = &o.occlude {
+        occlude::run(&mut scene, occ)?;
     }
     if !o.per_pen() {
         return Ok(scene);

@@ -22,14 +22,19 @@
 //! 2. **Improvement** ([`SortOptions::two_opt`]): passes of windowed 2-opt
 //!    (reverse a run of up to [`SortOptions::window`] consecutive paths,
 //!    drawing each of them backwards; needs `reverse`), Or-opt (move a run
-//!    of one to three paths up to `window` places away, possibly
+//!    of one to three paths about `window / 8` places away, possibly
 //!    backwards), and re-choosing the entry vertex of every closed path
 //!    for its new neighbours. A change is made only when it shortens the
 //!    travel, so the result is never longer than the greedy order. Passes
 //!    stop when one shortens the travel by less than 0.1 %, or after
-//!    [`SortOptions::max_passes`];
-//!    each costs O(n · window), so the whole stage stays O(n log n + n ·
-//!    window · passes).
+//!    [`SortOptions::max_passes`]; each costs O(n · window), so the whole
+//!    stage stays O(n log n + n · window · passes). Candidates are screened
+//!    with squared distances against cached move lengths, so a pass costs
+//!    little more than reading the order.
+//!
+//! On 100,000 random short paths the improvement passes shorten the
+//! greedy travel by about 8–9 %; see `timing_100k` in the tests for the
+//! measurement.
 //!
 //! Ink is unchanged: every path is drawn with exactly the same segments
 //! (reversing swaps the points of each segment, rotating a closed path
@@ -58,19 +63,21 @@ pub struct SortOptions {
     /// Run the improvement passes after the greedy order (2-opt, Or-opt,
     /// closed-path re-rotation). Off gives the plain greedy order.
     pub two_opt: bool,
-    /// How many places away the improvement passes look (at least 1).
+    /// How many places away 2-opt looks (at least 1); Or-opt looks an
+    /// eighth as far (at least 2), since its moves cost more to try and
+    /// gain less (measured on random drawings).
     pub window: u32,
     /// At most this many improvement passes.
     pub max_passes: u32,
 }
 
 impl SortOptions {
-    /// Reversal, rotation and improvement on; window 32, at most 8 passes.
+    /// Reversal, rotation and improvement on; window 64, at most 8 passes.
     pub const DEFAULT: SortOptions = SortOptions {
         reverse: true,
         rotate_closed: true,
         two_opt: true,
-        window: 32,
+        window: 64,
         max_passes: 8,
     };
 
@@ -358,7 +365,7 @@ impl Tour {
 
     fn improve(&mut self, cands: &Candidates, options: &SortOptions) {
         let window = options.window.max(1) as usize;
-        let or_window = or_window_tmp((window / 8).max(2));
+        let or_window = (window / 8).max(2);
         self.fix_edges(0, self.len());
         let mut travel = self.travel();
         for _ in 0..options.max_passes {
@@ -627,7 +634,7 @@ pub(crate) struct PointIndex {
 }
 
 /// Points per leaf, at most.
-const LEAF: usize = 12;
+const LEAF: usize = 24;
 
 /// The largest `f32` not above `x`.
 fn f32_down(x: f64) -> f32 {
@@ -1144,16 +1151,19 @@ pub(crate) mod tests {
         assert!(ids.contains(&"nan") && ids.contains(&"ok"));
     }
 
-    /// Release-mode timing of merge + sort on 100,000 random short paths
-    /// (not an assertion): `cargo test --release --lib plot::sort::tests::timing
-    /// -- --ignored --nocapture`.
+    /// Release-mode timing of merge + sort on 100,000 short paths (not an
+    /// assertion): `cargo test --release --lib plot::sort::tests::timing
+    /// -- --ignored --nocapture`. Two drawings: random scattered strokes
+    /// (lines and cubics up to ~3 mm, little to merge), and 1,000 random
+    /// walks cut into 100 pieces each, shuffled, half of them reversed and
+    /// a quarter moved by 0.03 mm (everything to merge).
     #[test]
     #[ignore]
     #[allow(clippy::print_stdout)]
     fn timing_100k() {
         use crate::plot::merge::{self, MergeOptions};
         let mut rng = crate::Seed(7).derive("sort-timing").stream();
-        let mut paths = Vec::new();
+        let mut scattered = Vec::new();
         for i in 0..100_000 {
             let x = rng.unit() * 400.0;
             let y = rng.unit() * 280.0;
@@ -1170,8 +1180,32 @@ pub(crate) mod tests {
                     (x + dx, y + dy),
                 );
             }
-            paths.push(styled(format!("p{i}"), p));
+            scattered.push(styled(format!("p{i}"), p));
         }
+        let mut walks = Vec::new();
+        for w in 0..1000 {
+            let mut at = Point::new(rng.unit() * 400.0, rng.unit() * 280.0);
+            for k in 0..100 {
+                let next = at + kurbo::Vec2::new(rng.symmetric(1.0), rng.symmetric(1.0));
+                let start = if rng.below(4) == 0 {
+                    at + kurbo::Vec2::new(0.03, 0.0)
+                } else {
+                    at
+                };
+                let mut p = BezPath::new();
+                p.move_to(start);
+                p.line_to(next);
+                if rng.below(2) == 0 {
+                    p = super::super::flatten::reverse_open(&p);
+                }
+                walks.push(styled(format!("w{w}.{k}"), p));
+                at = next;
+            }
+        }
+        for i in (1..walks.len()).rev() {
+            walks.swap(i, rng.below(i + 1));
+        }
+
         // CPU time of this thread (Linux), which a busy machine inflates
         // less than wall time; the best of three runs.
         fn cpu() -> std::time::Duration {
@@ -1194,98 +1228,39 @@ pub(crate) mod tests {
             }
             (out.unwrap(), best)
         }
-        let (merged, t_merge) = best_of(&paths, |p| merge::merge(p, &MergeOptions::DEFAULT));
-        let greedy_options = SortOptions::DEFAULT.with_two_opt(false);
-        let (greedy, t_greedy) = best_of(&merged, |p| order(p, &greedy_options));
-        let (best, t_full) = best_of(&merged, |p| order(p, &SortOptions::DEFAULT));
-        let (_, t_both) = best_of(&paths, |p| {
-            order(
-                merge::merge(p, &MergeOptions::DEFAULT),
-                &SortOptions::DEFAULT,
-            )
-        });
-        println!("merge + sort: {t_both:?}");
-        for w in [8, 16, 32, 64] {
+        for (name, paths) in [("scattered", &scattered), ("walks", &walks)] {
+            let (merged, t_merge) = best_of(paths, |p| merge::merge(p, &MergeOptions::DEFAULT));
+            let greedy_options = SortOptions::DEFAULT.with_two_opt(false);
+            let (greedy, t_greedy) = best_of(&merged, |p| order(p, &greedy_options));
+            let (best, t_full) = best_of(&merged, |p| order(p, &SortOptions::DEFAULT));
+            let (_, t_both) = best_of(paths, |p| {
+                order(
+                    merge::merge(p, &MergeOptions::DEFAULT),
+                    &SortOptions::DEFAULT,
+                )
+            });
+            println!(
+                "{name}: {} → {} paths; merge {t_merge:?}, greedy sort {t_greedy:?}, \
+                 full sort {t_full:?}, merge + full sort {t_both:?}",
+                paths.len(),
+                merged.len(),
+            );
+            println!(
+                "{name}: travel as given {:.0} mm, greedy {:.0} mm, improved {:.0} mm \
+                 ({:.1} % less than greedy)",
+                travel(&merged),
+                travel(&greedy),
+                travel(&best),
+                100.0 * (1.0 - travel(&best) / travel(&greedy))
+            );
+        }
+        for w in [8, 16, 32, 64, 128] {
             let o = SortOptions::DEFAULT.with_window(w);
-            let (r, t) = best_of(&merged, |p| order(p, &o));
-            println!("window {w}: {t:?}, travel {:.0}", travel(&r));
-        }
-        println!(
-            "100k paths: merge {t_merge:?} ({} → {} paths), greedy sort {t_greedy:?}, full sort {t_full:?}",
-            paths.len(),
-            merged.len(),
-        );
-        println!(
-            "travel: input {:.0} mm, greedy {:.0} mm, improved {:.0} mm ({:.1} % less)",
-            travel(&merged),
-            travel(&greedy),
-            travel(&best),
-            100.0 * (1.0 - travel(&best) / travel(&greedy))
-        );
-        // Pass by pass.
-        let input = split_subpaths(merged);
-        let cands = Candidates::new(&input, &SortOptions::DEFAULT);
-        let mut tour = cands.greedy();
-        tour.fix_edges(0, tour.len());
-        for pass in 0..SortOptions::DEFAULT.max_passes {
-            let t = cpu();
-            tour.two_opt_pass(32);
-            let (t2, l2) = (cpu() - t, tour.travel());
-            let t = cpu();
-            tour.or_opt_pass(32, true);
-            let (t3, l3) = (cpu() - t, tour.travel());
-            println!("pass {pass}: 2-opt {t2:?} → {l2:.0} mm, or-opt {t3:?} → {l3:.0} mm");
+            let (r, t) = best_of(&scattered, |p| order(p, &o));
+            println!(
+                "scattered, window {w}: sort {t:?}, travel {:.0} mm",
+                travel(&r)
+            );
         }
     }
-}
-#[cfg(test)]
-mod tmp_profile {
-    #[test]
-    #[ignore]
-    fn profile_merge_greedy() {
-        use super::*;
-        use crate::plot::merge::{self, MergeOptions};
-        let mut rng = crate::Seed(7).derive("sort-timing").stream();
-        let mut paths = Vec::new();
-        for i in 0..100_000 {
-            let x = rng.unit() * 400.0;
-            let y = rng.unit() * 280.0;
-            let mut p = BezPath::new();
-            p.move_to((x, y));
-            p.line_to((x + rng.unit(), y + rng.unit()));
-            paths.push(tests::styled(format!("p{i}"), p));
-        }
-        let which = std::env::var("WHICH").unwrap_or_default();
-        let w: u32 = std::env::var("W")
-            .ok()
-            .and_then(|w| w.parse().ok())
-            .unwrap_or(32);
-        match which.as_str() {
-            "merge" => drop(std::hint::black_box(merge::merge(
-                paths,
-                &MergeOptions::DEFAULT,
-            ))),
-            "greedy" => {
-                let r = order(paths, &SortOptions::DEFAULT.with_two_opt(false));
-                eprintln!(
-                    "TRAVEL {:.1}",
-                    crate::plot::stats::pen_up_length(r.iter().map(|p| &p.path))
-                );
-            }
-            "full" => {
-                let r = order(paths, &SortOptions::DEFAULT.with_window(w));
-                eprintln!(
-                    "TRAVEL {:.1}",
-                    crate::plot::stats::pen_up_length(r.iter().map(|p| &p.path))
-                );
-            }
-            _ => {}
-        }
-    }
-}
-fn or_window_tmp(w: usize) -> usize {
-    std::env::var("ORW")
-        .ok()
-        .and_then(|d| d.parse::<usize>().ok())
-        .map_or(w, |d| d)
 }
