@@ -5,4 +5,5 @@
 mod cli;
 mod compat;
 mod determinism;
+mod plot_cli;
 mod snapshots;

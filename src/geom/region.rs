@@ -514,7 +514,7 @@ fn combine<W: WindingNumber>(
         }));
         if let Ok(Some(path)) = attempt {
             let area = path.area().abs();
-            if expected.map_or(true, |e| (area - e).abs() <= allowance) {
+            if expected.is_none_or(|e| (area - e).abs() <= allowance) {
                 return Some(path);
             }
         }

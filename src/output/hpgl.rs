@@ -351,7 +351,7 @@ const MIN_SEGMENT: f64 = 1e-9;
 fn dedup(points: &[Point]) -> Vec<Point> {
     let mut v: Vec<Point> = Vec::with_capacity(points.len());
     for &p in points {
-        if v.last().map_or(true, |q| q.distance(p) > MIN_SEGMENT) {
+        if v.last().is_none_or(|q| q.distance(p) > MIN_SEGMENT) {
             v.push(p);
         }
     }

@@ -73,7 +73,7 @@ pub fn repeat_path(path: &BezPath, options: &MultipassOptions) -> BezPath {
             // passes but the last.
             let start = start_point(&sub);
             let body = &els[1..els.len() - 1];
-            let ends_at_start = body.last().map_or(true, |el| el_end(*el) == start);
+            let ends_at_start = !matches!(body.last(), Some(el) if el_end(*el) != start);
             out.push(els[0]);
             for pass in 0..passes {
                 out.extend_from_slice(body);

@@ -154,7 +154,7 @@ enum Twigs {
 /// The side a parity-alternating rule puts a branch on: the source's
 /// `if (世代 == 偶数) 左 else 右`.
 fn side_by_parity(generation: u32) -> Side {
-    if generation % 2 == 0 {
+    if generation.is_multiple_of(2) {
         Side::Left
     } else {
         Side::Right
