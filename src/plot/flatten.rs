@@ -7,8 +7,9 @@
 //! group transforms. [`by_pen`] makes one from any scene:
 //!
 //! - one [`Layer`] per pen number used by the scene, in ascending pen number,
-//!   with id `pen-N`, the pen's name (empty when the pen is not in
-//!   [`Scene::pens`]) and depth 0;
+//!   with id `pen-N.layer` (the SVG writer names the pen's Inkscape layer
+//!   `pen-N`), the pen's name (empty when the pen is not in [`Scene::pens`])
+//!   and depth 0;
 //! - its content is one group `pen-N.paths` with the identity transform
 //!   whose children are every path of that pen's layers, in paint order
 //!   ([`Scene::layers_back_to_front`], then document order inside a layer);
@@ -60,7 +61,7 @@ pub fn by_pen(scene: &Scene) -> Scene {
                 });
             }
             Layer {
-                id: format!("pen-{number}"),
+                id: format!("pen-{number}.layer"),
                 name: scene
                     .pen(number)
                     .map_or_else(String::new, |p| p.name.clone()),
@@ -371,7 +372,7 @@ mod tests {
     fn by_pen_groups_by_pen_in_paint_order() {
         let flat = by_pen(&test_scene());
         let layer_ids: Vec<&str> = flat.layers.iter().map(|l| l.id.as_str()).collect();
-        assert_eq!(layer_ids, ["pen-1", "pen-2"]);
+        assert_eq!(layer_ids, ["pen-1.layer", "pen-2.layer"]);
         assert_eq!(flat.layers[0].name, "black");
         assert_eq!(flat.layers[1].name, "red");
         assert_eq!(flat.layers[0].content.id, "pen-1.paths");

@@ -9,10 +9,12 @@
 //! with an end point nearest to the chain's free end, as long as that end
 //! lies within [`MergeOptions::tolerance`]. With
 //! [`MergeOptions::reverse`] a path may join back to front (end to end,
-//! start to start); otherwise only end to start. Ends are looked up in a
-//! k-d tree with deletion, so merging is O(n log n). Ties go to a start
-//! before an end, then to the lower path index, so the result is
-//! deterministic.
+//! start to start); otherwise only end to start. Ends with another end in
+//! their neighbourhood (found by sorting ends into grid cells of the
+//! tolerance's size) are looked up in a k-d tree with deletion; the others
+//! cannot join anything and cost nothing more. Merging is O(n log n). Ties
+//! go to a start before an end, then to the lower path index, so the
+//! result is deterministic.
 //!
 //! A chain becomes one path with the id and style of the path that started
 //! it (the first in the original order), at that path's place in the
@@ -29,7 +31,7 @@ use kurbo::{BezPath, PathEl, Point};
 use serde::{Deserialize, Serialize};
 
 use super::flatten::{
-    end_point, is_closed, reverse_open, set_paths, split_subpaths, start_point, take_paths,
+    end_point, is_closed, reverse_open_in_place, set_paths, split_subpaths, start_point, take_paths,
 };
 use super::sort::PointIndex;
 use crate::scene::{Scene, StyledPath};
@@ -124,9 +126,9 @@ pub fn merge(paths: Vec<StyledPath>, options: &MergeOptions) -> Vec<StyledPath> 
         free.take(seed);
         chain.clear();
         chain.push_back((seed, false));
-        // Grow at the end: a start there continues forwards, an end
+        // Grow at the end (ends are named by codes: path i's start is i,
+        // its end n + i): a start there continues forwards, an end
         // continues backwards.
-        // Free ends by code: path i's start is i, its end n + i.
         let mut tail = n + seed;
         while let Some((j, via_start)) = free.next(tail, true) {
             used[j] = true;
@@ -151,11 +153,10 @@ pub fn merge(paths: Vec<StyledPath>, options: &MergeOptions) -> Vec<StyledPath> 
                 } else {
                     slots[j].take().map(|p| p.path).unwrap_or_default()
                 };
-                let piece = if backwards {
-                    reverse_open(&piece)
-                } else {
-                    piece
-                };
+                let mut piece = piece;
+                if backwards {
+                    reverse_open_in_place(&mut piece);
+                }
                 append(&mut joined, &piece);
             }
             first.path = joined;

@@ -303,7 +303,7 @@ mod tests {
         let l1 = &s.layers[0];
         assert_eq!(
             (l1.id.as_str(), l1.name.as_str(), l1.pen),
-            ("pen-1", "black", 1)
+            ("pen-1.layer", "black", 1)
         );
         assert_eq!((l1.paths, l1.pen_lifts), (2, 2));
         assert!((l1.pen_down_mm - 40.0).abs() < 1e-9);
@@ -311,7 +311,10 @@ mod tests {
         assert!((l1.pen_up_mm - up1).abs() < 1e-9);
         assert!((l1.plot_time_s - (4.0 + up1 / 20.0 + 2.0)).abs() < 1e-9);
         let l2 = &s.layers[1];
-        assert_eq!((l2.id.as_str(), l2.name.as_str(), l2.pen), ("pen-2", "", 2));
+        assert_eq!(
+            (l2.id.as_str(), l2.name.as_str(), l2.pen),
+            ("pen-2.layer", "", 2)
+        );
         let up2 = 500f64.sqrt();
         assert!((l2.pen_up_mm - up2).abs() < 1e-9);
         assert_eq!(s.paths, 3);
@@ -324,7 +327,7 @@ mod tests {
         for key in ["paths", "pen_down_mm", "pen_up_mm", "plot_time_s"] {
             assert!(json[key].is_number(), "{key}");
         }
-        assert_eq!(json["layers"][1]["id"], "pen-2");
+        assert_eq!(json["layers"][1]["id"], "pen-2.layer");
     }
 
     #[test]
