@@ -6,4 +6,5 @@ mod cli;
 mod compat;
 mod determinism;
 mod plot_cli;
+mod readme;
 mod snapshots;
