@@ -318,9 +318,14 @@ fn default_design(cfg: &Config) -> Result<(), moyo::Error> {
 
 /// One layer, one `tree1` set of `count` trees along a horizontal line.
 fn row_of_trees(count: u32, style: &str) -> String {
+    row_scene(count, "tree1", style, 6)
+}
+
+/// One layer with one set of `count` trees of `rule` along a 4 m line.
+fn row_scene(count: u32, rule: &str, style: &str, generations: u32) -> String {
     format!(
         r#"version = 1
-title = "bench: {count} trees, {style}"
+title = "bench: {count} {rule} trees, {style}"
 seed = 1
 
 [page]
@@ -339,12 +344,12 @@ style = "{style}"
 
 [[layers.trees]]
 id = "row"
-rule = "tree1"
+rule = "{rule}"
 count = {count}
 centre = [[10, 900], [3970, 900]]
 
 [layers.trees.params]
-generations = 6
+generations = {generations}
 "#
     )
 }
@@ -400,34 +405,7 @@ fn scaling(cfg: &Config, style: &str) -> Result<(), moyo::Error> {
 /// One set of `count` small trees (`tree2`, 2 generations, stroke limbs),
 /// each tree with an override when `overridden`.
 fn overridden_trees(count: u32, overridden: bool) -> String {
-    let mut s = format!(
-        r#"version = 1
-seed = 1
-
-[page]
-size = [4000, 1000]
-orientation = "landscape"
-margin = 10
-
-[limits]
-max_paths = 1000000
-
-[[layers]]
-name = "row"
-
-[layers.limbs]
-style = "stroke"
-
-[[layers.trees]]
-id = "row"
-rule = "tree2"
-count = {count}
-centre = [[10, 900], [3970, 900]]
-
-[layers.trees.params]
-generations = 2
-"#
-    );
+    let mut s = row_scene(count, "tree2", "stroke", 2);
     if overridden {
         for i in 0..count {
             s.push_str(&format!(
