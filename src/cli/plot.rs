@@ -322,7 +322,12 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     options
         .validate("plot")
         .map_err(|e| CliError::Message(format!("options: {e}")))?;
-    let scene = load_svg(&args.input)?;
+    let mut scene = load_svg(&args.input)?;
+    if args.silhouettes {
+        // An imported drawing carries no solid marks: each group of paths
+        // is taken as one shape, as the option's help says.
+        plot::occlude::mark_path_groups_solid(&mut scene);
+    }
     let scene = plot::run(scene, &options)?;
 
     // Everything is computed before anything is written.

@@ -2,5 +2,6 @@
 //! validated description and write [`crate::scene::Group`]s; they never
 //! write files.
 
+pub mod flora;
 pub mod kimono;
 pub mod tree;

@@ -37,9 +37,9 @@
 //! lines are strokes like any other — and keep closed outlines occluding.
 //!
 //! **Silhouettes.** With [`OccludeOptions::silhouettes`], before hiding,
-//! every group below a layer's top group whose children are all paths (a
-//! tree of [`crate::motif::kimono`]: one closed outline per limb) has its
-//! closed paths replaced by the outline of their union, a path with the
+//! every [solid](Group::solid) group (a tree of [`crate::motif::kimono`]:
+//! one closed outline per limb; [`mark_path_groups_solid`] marks the
+//! groups of an imported drawing) has its closed paths replaced by the outline of their union, a path with the
 //! group's id plus [`SILHOUETTE_SUFFIX`], at the place of the first of
 //! them. Limb outlines that cross inside the tree vanish; without it a
 //! later limb hides the earlier limbs' outlines inside it, but its own
@@ -202,7 +202,7 @@ pub fn run(scene: &mut Scene, o: &OccludeOptions) -> Result<()> {
 
     if o.silhouettes {
         for &li in &order {
-            silhouettes_below(&mut scene.layers[li].content, page, true);
+            silhouettes_below(&mut scene.layers[li].content, page);
         }
         // Cannot fail: silhouettes are checked as they are made.
         painted.clear();
@@ -509,20 +509,37 @@ fn apply(group: &mut Group, outcomes: &mut impl Iterator<Item = Outcome>) {
     group.children = kept;
 }
 
-/// Replaces the closed paths of every group of paths below `group` by
-/// their silhouette; `top` marks a layer's top group, which is not merged
-/// itself. Coordinates were checked before.
-fn silhouettes_below(group: &mut Group, outer: Affine, top: bool) {
+/// Marks as [solid](Group::solid) every group below a layer's top group
+/// whose children are all paths: in a drawing that carries no marks (an
+/// imported SVG), a group of paths is taken as one shape.
+pub fn mark_path_groups_solid(scene: &mut Scene) {
+    fn mark(group: &mut Group, top: bool) {
+        let only_paths =
+            !group.children.is_empty() && group.children.iter().all(|c| matches!(c, Node::Path(_)));
+        if only_paths && !top {
+            group.solid = true;
+        }
+        for child in &mut group.children {
+            if let Node::Group(g) = child {
+                mark(g, false);
+            }
+        }
+    }
+    for layer in &mut scene.layers {
+        mark(&mut layer.content, true);
+    }
+}
+
+/// Replaces the closed paths of every solid group below `group` by their
+/// silhouette. Coordinates were checked before.
+fn silhouettes_below(group: &mut Group, outer: Affine) {
     let here = outer * group.transform;
-    let only_paths =
-        !group.children.is_empty() && group.children.iter().all(|c| matches!(c, Node::Path(_)));
-    if only_paths && !top {
+    if group.solid {
         merge_into_silhouette(group, here);
-        return;
     }
     for child in &mut group.children {
         if let Node::Group(g) = child {
-            silhouettes_below(g, here, false);
+            silhouettes_below(g, here);
         }
     }
 }
@@ -941,7 +958,7 @@ mod tests {
     fn silhouettes_remove_crossing_limb_outlines() {
         let tree = || {
             let mut set = Group::new("l.set");
-            let mut tree = Group::new("l.set.tree-0");
+            let mut tree = Group::solid("l.set.tree-0");
             tree.push_path(
                 "l.set.tree-0.limb-0",
                 limb(Point::new(50.0, 100.0), Point::new(50.0, 40.0), 4.0),
@@ -1026,7 +1043,8 @@ mod tests {
         let mut top = Group::new("top");
         top.push_group(tree.clone());
         let mut s = scene(vec![layer("l", 0, top.clone())]);
-        silhouettes_below(&mut s.layers[0].content, Affine::IDENTITY, true);
+        mark_path_groups_solid(&mut s);
+        silhouettes_below(&mut s.layers[0].content, Affine::IDENTITY);
         let mut ids = Vec::new();
         s.visit_paths(|_, p, _| ids.push(p.id.clone()));
         assert_eq!(ids, ["t.silhouette", "open"]);
@@ -1037,8 +1055,14 @@ mod tests {
             }
         }
         let mut s = scene(vec![layer("l", 0, top.clone())]);
-        silhouettes_below(&mut s.layers[0].content, Affine::IDENTITY, true);
-        assert_eq!(s.layers[0].content, top);
+        silhouettes_below(&mut s.layers[0].content, Affine::IDENTITY);
+        assert_eq!(s.layers[0].content, top, "not solid: left alone");
+        mark_path_groups_solid(&mut s);
+        silhouettes_below(&mut s.layers[0].content, Affine::IDENTITY);
+        if let Node::Group(g) = &mut top.children[0] {
+            g.solid = true;
+        }
+        assert_eq!(s.layers[0].content, top, "mixed styles: left alone");
     }
 
     #[test]

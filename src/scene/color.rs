@@ -64,6 +64,29 @@ impl Color {
             .find(|(n, _)| n.eq_ignore_ascii_case(s))
             .map(|(_, c)| *c)
     }
+
+    /// Darker towards black for `brightness` < 1, lighter towards white
+    /// above 1 (0 is black, 2 is white).
+    pub fn shaded(self, brightness: f64) -> Color {
+        let b = brightness.clamp(0.0, 2.0);
+        let (target, t) = if b <= 1.0 {
+            (0.0, 1.0 - b)
+        } else {
+            (255.0, b - 1.0)
+        };
+        self.map(|c| c + (target - c) * t)
+    }
+
+    /// The colour seen when painted with `opacity` (0–1) on white paper.
+    pub fn over_white(self, opacity: f64) -> Color {
+        let a = opacity.clamp(0.0, 1.0);
+        self.map(|c| 255.0 + (c - 255.0) * a)
+    }
+
+    fn map(self, f: impl Fn(f64) -> f64) -> Color {
+        let ch = |c: u8| f(f64::from(c)).round().clamp(0.0, 255.0) as u8;
+        Color::rgb(ch(self.r), ch(self.g), ch(self.b))
+    }
 }
 
 impl fmt::Display for Color {
@@ -85,5 +108,17 @@ mod tests {
         assert_eq!(Color::parse("#gg0000"), None);
         assert_eq!(Color::parse("chartreuse-ish"), None);
         assert_eq!(Color::rgb(1, 2, 255).to_string(), "#0102ff");
+    }
+
+    #[test]
+    fn brightness_and_opacity_mix_towards_black_and_paper() {
+        let c = Color::rgb(200, 100, 0);
+        assert_eq!(c.shaded(1.0), c);
+        assert_eq!(c.shaded(0.0), Color::BLACK);
+        assert_eq!(c.shaded(2.0), Color::rgb(255, 255, 255));
+        assert_eq!(c.shaded(0.5), Color::rgb(100, 50, 0));
+        assert_eq!(c.over_white(1.0), c);
+        assert_eq!(c.over_white(0.0), Color::rgb(255, 255, 255));
+        assert_eq!(c.over_white(0.5), Color::rgb(228, 178, 128));
     }
 }

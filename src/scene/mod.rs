@@ -69,6 +69,11 @@ pub struct Group {
     pub transform: Affine,
     /// Children in paint order (first is painted first, i.e. behind).
     pub children: Vec<Node>,
+    /// The group's closed paths are parts of one solid shape (the limbs of
+    /// a tree): hidden-line removal with silhouettes merges them into one
+    /// outline ([`crate::plot::occlude`]). Motifs and imported groups are
+    /// not solid.
+    pub solid: bool,
 }
 
 impl Group {
@@ -78,6 +83,15 @@ impl Group {
             id: id.into(),
             transform: Affine::IDENTITY,
             children: Vec::new(),
+            solid: false,
+        }
+    }
+
+    /// An empty solid group (see [`Group::solid`]).
+    pub fn solid(id: impl Into<String>) -> Group {
+        Group {
+            solid: true,
+            ..Group::new(id)
         }
     }
 

@@ -9,10 +9,15 @@
 //! Errors name the field path (`layers[0].trees[1].params.ratio1`), the
 //! allowed range, and — for TOML — the line and column of the value.
 
+mod flora;
 mod locate;
 mod params;
 mod validate;
 
+pub use flora::{
+    AdjustSpec, Assign, BackgroundSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec,
+    JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MotifKind, MotifRef, PaintSpec,
+};
 pub use params::{ResolvedTreeParams, TreeParams};
 pub use validate::MAX_COORD;
 
@@ -84,6 +89,9 @@ pub struct SceneSpec {
     /// cannot drift apart.
     #[serde(default, skip_serializing_if = "PlotOptions::is_empty")]
     pub plot: PlotOptions,
+    /// Final adjustment of single trees, flowers and leaves by id.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub adjust: Vec<AdjustSpec>,
 }
 
 /// Paper size, orientation and margins.
@@ -286,6 +294,9 @@ pub struct LayerSpec {
     /// Tree sets, each along its own centre line.
     #[serde(default)]
     pub trees: Vec<TreeSetSpec>,
+    /// A background pattern composited into a mask (SPEC §1.6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub background: Option<BackgroundSpec>,
 }
 
 fn default_pen_number() -> u32 {
@@ -424,6 +435,12 @@ pub struct TreeSetSpec {
     /// Per-tree adjustments by id (`tree-0`, `tree-1`, …).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub overrides: Vec<TreeOverride>,
+    /// Flowers at the trees' vertices.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flowers: Option<FlowerSpec>,
+    /// Leaves around the flowers and at the branch joints.
+    #[serde(default, skip_serializing_if = "LeavesSpec::is_empty")]
+    pub leaves: LeavesSpec,
 }
 
 fn default_count() -> u32 {

@@ -26,7 +26,7 @@ pub(crate) fn range<T: PartialOrd + Display + Copy>(field: &str, v: T, lo: T, hi
     }
 }
 
-fn point(field: &str, p: [f64; 2]) -> Result<()> {
+pub(crate) fn point(field: &str, p: [f64; 2]) -> Result<()> {
     for (axis, v) in ["x", "y"].iter().zip(p) {
         if !(v.is_finite() && v.abs() <= MAX_COORD) {
             return Err(Error::invalid(
@@ -38,7 +38,7 @@ fn point(field: &str, p: [f64; 2]) -> Result<()> {
     Ok(())
 }
 
-fn points(field: &str, pts: &[[f64; 2]], min: usize) -> Result<()> {
+pub(crate) fn points(field: &str, pts: &[[f64; 2]], min: usize) -> Result<()> {
     if pts.len() < min {
         return Err(Error::invalid(
             field,
@@ -159,10 +159,21 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
         }
         self::layer(&f, layer, &numbers)?;
     }
+    let mut adjusted = BTreeSet::new();
+    for (i, a) in s.adjust.iter().enumerate() {
+        let f = format!("adjust[{i}]");
+        a.check(&f)?;
+        if !adjusted.insert(a.id.as_str()) {
+            return Err(Error::invalid(
+                format!("{f}.id"),
+                format!("'{}' is adjusted twice", a.id),
+            ));
+        }
+    }
     Ok(())
 }
 
-fn bad_color(field: &str, value: &str) -> Error {
+pub(crate) fn bad_color(field: &str, value: &str) -> Error {
     Error::invalid(
         field,
         format!("'{value}' is not a colour: use #rrggbb, #rgb or a CSS name such as black"),
@@ -241,6 +252,9 @@ fn layer(f: &str, layer: &LayerSpec, pens: &BTreeSet<u32>) -> Result<()> {
         }
         tree_set(&sf, set)?;
     }
+    if let Some(bg) = &layer.background {
+        bg.check(&format!("{f}.background"))?;
+    }
     Ok(())
 }
 
@@ -284,5 +298,8 @@ fn tree_set(f: &str, set: &TreeSetSpec) -> Result<()> {
         }
         o.params.check(&format!("{of}.params"))?;
     }
-    Ok(())
+    if let Some(fl) = &set.flowers {
+        fl.check(&format!("{f}.flowers"))?;
+    }
+    set.leaves.check(&format!("{f}.leaves"))
 }

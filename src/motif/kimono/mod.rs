@@ -173,7 +173,7 @@ pub fn tree_set(
             tip_width: limbs.tip_width * place.scale,
             bow: limbs.bow,
         };
-        let mut tree_group = Group::new(&full_id);
+        let mut tree_group = Group::solid(&full_id);
         for (k, path) in tree::limb_paths(&skeleton, &look).into_iter().enumerate() {
             tree_group.push_path(format!("{full_id}.limb-{k}"), path, style.clone());
         }

@@ -19,6 +19,8 @@ fn set(centre: Points, count: u32) -> TreeSetSpec {
             ..TreeParams::default()
         },
         overrides: Vec::new(),
+        flowers: None,
+        leaves: Default::default(),
     }
 }
 

@@ -1,0 +1,625 @@
+//! The kimono composition parts of a description: flowers and leaves on
+//! tree sets (SPEC §1.5), background layers (SPEC §1.6) and the final
+//! adjustment of single trees, flowers and leaves by id (SPEC §1,
+//! design step 4).
+//!
+//! Decisions where the source is silent:
+//!
+//! * Flowers and leaves belong to a **tree set**, not to a layer: a set is
+//!   what the source calls a layer (one centre line, one tree kind), and a
+//!   moyo layer may hold several sets.
+//! * Brightness and opacity make the **preview fill colour**: the motif's
+//!   `fill` is darkened or lightened by `brightness` and mixed with the
+//!   white paper by `opacity` (what lies behind a motif is hidden by the
+//!   plot stage, so mixing with the paper is what a viewer sees). For pens,
+//!   `hatch` gives the motif its own hatch spacing.
+
+use serde::{Deserialize, Serialize};
+
+use super::validate::{point, range};
+use super::{Growth, Points, TreeParams, TreeRule};
+use crate::error::{Error, Result};
+use crate::scene::Color;
+
+/// A built-in vector motif (SPEC §1.5): flowers, leaves, and shapes for
+/// background stamps and tiles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MotifKind {
+    /// 梅 plum blossom: five round petals, stamens.
+    Ume,
+    /// 桜 cherry blossom: five notched petals.
+    Sakura,
+    /// 菊 chrysanthemum: many narrow rayed petals.
+    Kiku,
+    /// 椿 camellia: five broad overlapping petals around a stamen cup.
+    Tsubaki,
+    /// 桔梗 bellflower: five pointed petals, star-shaped.
+    Kikyo,
+    /// 牡丹 peony: layered ruffled petals.
+    Botan,
+    /// 紅葉 maple leaf: seven pointed lobes.
+    Momiji,
+    /// 松 pine: a fan of needles.
+    Matsu,
+    /// 竹 bamboo leaves: a spray of long narrow leaves.
+    Take,
+    /// A generic pointed leaf with a midrib.
+    Leaf,
+    /// A plain circle (the default background stamp).
+    Circle,
+    /// 青海波 waves: concentric arcs (a background tile).
+    Seigaiha,
+    /// 亀甲 tortoise shell: a hexagon (a background tile).
+    Kikko,
+    /// 七宝 interlocking circles (a background tile).
+    Shippo,
+}
+
+impl MotifKind {
+    /// The flowers among the motifs.
+    pub const FLOWERS: [MotifKind; 6] = [
+        MotifKind::Ume,
+        MotifKind::Sakura,
+        MotifKind::Kiku,
+        MotifKind::Tsubaki,
+        MotifKind::Kikyo,
+        MotifKind::Botan,
+    ];
+
+    /// Every built-in motif.
+    pub const ALL: [MotifKind; 14] = [
+        MotifKind::Ume,
+        MotifKind::Sakura,
+        MotifKind::Kiku,
+        MotifKind::Tsubaki,
+        MotifKind::Kikyo,
+        MotifKind::Botan,
+        MotifKind::Momiji,
+        MotifKind::Matsu,
+        MotifKind::Take,
+        MotifKind::Leaf,
+        MotifKind::Circle,
+        MotifKind::Seigaiha,
+        MotifKind::Kikko,
+        MotifKind::Shippo,
+    ];
+}
+
+/// A motif named in a description: `"ume"`, `{ kind = "kiku", petals = 24,
+/// jitter = 0.2 }`, or a user motif `{ svg = "fan.svg" }` (a path relative
+/// to the description file).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a motif: a name (ume, sakura, kiku, tsubaki, kikyo, botan, momiji, matsu, take, leaf, circle, seigaiha, kikko, shippo), { kind = \"…\", petals = N, jitter = J } or { svg = \"file.svg\" }"
+)]
+pub enum MotifRef {
+    /// A built-in motif with its defaults.
+    Name(MotifKind),
+    /// A built-in motif with settings.
+    Built(BuiltMotif),
+    /// A motif drawn by the user.
+    File(FileMotif),
+}
+
+/// A built-in motif with settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BuiltMotif {
+    /// Which motif.
+    pub kind: MotifKind,
+    /// Petal, lobe, needle or leaf count (1–64); default: the motif's own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub petals: Option<u32>,
+    /// Random variation of each instance, 0–1.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub jitter: f64,
+}
+
+/// A user motif loaded from an SVG file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FileMotif {
+    /// Path of the SVG file, relative to the description file.
+    pub svg: String,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+impl MotifRef {
+    /// The built-in kind, `None` for a user motif.
+    pub fn kind(&self) -> Option<MotifKind> {
+        match self {
+            MotifRef::Name(k) => Some(*k),
+            MotifRef::Built(b) => Some(b.kind),
+            MotifRef::File(_) => None,
+        }
+    }
+
+    fn check(&self, f: &str) -> Result<()> {
+        match self {
+            MotifRef::Name(_) => Ok(()),
+            MotifRef::Built(b) => {
+                if let Some(n) = b.petals {
+                    range(&format!("{f}.petals"), n, 1, 64)?;
+                }
+                range(&format!("{f}.jitter"), b.jitter, 0.0, 1.0)
+            }
+            MotifRef::File(file) => {
+                if file.svg.trim().is_empty() {
+                    Err(Error::invalid(format!("{f}.svg"), "needs a file name"))
+                } else {
+                    Ok(())
+                }
+            }
+        }
+    }
+}
+
+/// How motifs are handed out to the trees of a set ([000 §4.6.1]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Assign {
+    /// Type 1: on every tree the i-th flower gets motif `(i mod n) + 1`;
+    /// leaves all use the first leaf motif.
+    #[default]
+    Type1,
+    /// Type 2: every flower (and leaf) of tree k gets motif `(k mod n) + 1`.
+    Type2,
+}
+
+/// Which flowers are drawn largest (SPEC §1 "the main flower is the
+/// largest").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MainLargest {
+    /// All the same size.
+    #[default]
+    None,
+    /// The first flower of each tree (at the trunk's top) is the largest;
+    /// later ones shrink evenly to `smallest` × the size.
+    Order,
+    /// Flowers shrink with the layer's depth: × `smallest` per depth step
+    /// behind the front.
+    Depth,
+}
+
+/// Preview colour and pen treatment of motifs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PaintSpec {
+    /// Fill colour of the preview (default: none, outline only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fill: Option<String>,
+    /// 0 (black) – 1 (as given) – 2 (white).
+    #[serde(default = "one")]
+    pub brightness: f64,
+    /// 0 (paper white) – 1 (as given).
+    #[serde(default = "one")]
+    pub opacity: f64,
+    /// Hatch the fill with lines this far apart (mm, 0.1–20) when
+    /// plotting.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hatch: Option<f64>,
+}
+
+impl Default for PaintSpec {
+    fn default() -> Self {
+        PaintSpec {
+            fill: None,
+            brightness: 1.0,
+            opacity: 1.0,
+            hatch: None,
+        }
+    }
+}
+
+impl PaintSpec {
+    /// True when every field has its default.
+    pub fn is_default(&self) -> bool {
+        *self == PaintSpec::default()
+    }
+
+    /// The preview fill colour after brightness and opacity.
+    pub fn color(&self) -> Option<Color> {
+        let c = Color::parse(self.fill.as_deref()?)?;
+        Some(c.shaded(self.brightness).over_white(self.opacity))
+    }
+
+    fn check(&self, f: &str) -> Result<()> {
+        if let Some(fill) = &self.fill {
+            if Color::parse(fill).is_none() {
+                return Err(super::validate::bad_color(&format!("{f}.fill"), fill));
+            }
+        }
+        range(&format!("{f}.brightness"), self.brightness, 0.0, 2.0)?;
+        range(&format!("{f}.opacity"), self.opacity, 0.0, 1.0)?;
+        if let Some(h) = self.hatch {
+            range(&format!("{f}.hatch"), h, 0.1, 20.0)?;
+        }
+        Ok(())
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Where flowers grow on a tree.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FlowerSites {
+    /// At the tip of every limb (trunk tip first).
+    #[default]
+    Tips,
+    /// At every vertex except the root.
+    Vertices,
+}
+
+/// Flowers of a tree set (SPEC §1.5).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FlowerSpec {
+    /// One to five motifs.
+    pub motifs: Vec<MotifRef>,
+    /// Type 1 or type 2 assignment (also used by the set's leaves).
+    #[serde(default)]
+    pub assign: Assign,
+    /// Where flowers sit.
+    #[serde(default)]
+    pub at: FlowerSites,
+    /// Width in mm (0.5–500).
+    #[serde(default = "default_flower_size")]
+    pub width: f64,
+    /// Height in mm (0.5–500); default: the width × the motif's own
+    /// height-to-width ratio.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Random turn of each flower, degrees (0–180); flowers stay upright
+    /// when 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub turn: f64,
+    /// Which flowers are largest.
+    #[serde(default)]
+    pub main_largest: MainLargest,
+    /// The smallest size relative to the main flower (0.05–1).
+    #[serde(default = "default_smallest")]
+    pub smallest: f64,
+    /// Preview colour and hatching.
+    #[serde(default, skip_serializing_if = "PaintSpec::is_default")]
+    pub paint: PaintSpec,
+}
+
+fn default_flower_size() -> f64 {
+    12.0
+}
+
+fn default_smallest() -> f64 {
+    0.6
+}
+
+/// Leaf 1: a ring of leaves around every flower.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LeafRingSpec {
+    /// One to five motifs (type 1 uses the first only).
+    pub motifs: Vec<MotifRef>,
+    /// Leaves per flower (0–8), evenly around it, the first pointing up.
+    #[serde(default = "default_ring_count")]
+    pub count: u32,
+    /// Distance from the flower's centre to each leaf's stem end, mm
+    /// (0–500).
+    #[serde(default = "default_spacing")]
+    pub spacing: f64,
+    /// Width in mm (0.5–500).
+    #[serde(default = "default_leaf_width")]
+    pub width: f64,
+    /// Height in mm; default: from the motif's own proportions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Preview colour and hatching.
+    #[serde(default, skip_serializing_if = "PaintSpec::is_default")]
+    pub paint: PaintSpec,
+}
+
+fn default_ring_count() -> u32 {
+    3
+}
+
+fn default_spacing() -> f64 {
+    4.0
+}
+
+fn default_leaf_width() -> f64 {
+    5.0
+}
+
+/// Leaf 2: a leaf at every branch joint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointLeafSpec {
+    /// One to five motifs (type 1 uses the first only).
+    pub motifs: Vec<MotifRef>,
+    /// Width in mm (0.5–500).
+    #[serde(default = "default_leaf_width")]
+    pub width: f64,
+    /// Height in mm; default: from the motif's own proportions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Angle between the leaf and its branch, degrees (−180–180); the
+    /// leaf leans away from the parent limb.
+    #[serde(default = "default_joint_angle")]
+    pub angle: f64,
+    /// Preview colour and hatching.
+    #[serde(default, skip_serializing_if = "PaintSpec::is_default")]
+    pub paint: PaintSpec,
+}
+
+fn default_joint_angle() -> f64 {
+    35.0
+}
+
+/// Leaves of a tree set.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LeavesSpec {
+    /// Leaf 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ring: Option<LeafRingSpec>,
+    /// Leaf 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub joints: Option<JointLeafSpec>,
+}
+
+impl LeavesSpec {
+    /// True when no leaves are asked for.
+    pub fn is_empty(&self) -> bool {
+        self.ring.is_none() && self.joints.is_none()
+    }
+}
+
+/// A background layer (SPEC §1.6): a mask grown from hidden trees and a
+/// pattern clipped to it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BackgroundSpec {
+    /// Mask generation mode, 1–4 (see SPEC §1.6).
+    pub composite: u8,
+    /// Tree rule of the hidden mask trees; default tree2 for composites
+    /// 1 and 2, tree4 (sparser) for 3 and 4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rule: Option<TreeRule>,
+    /// Number of mask trees (0–1000) along the centre line.
+    #[serde(default = "default_mask_count")]
+    pub count: u32,
+    /// Centre line of the mask trees (≥ 2 points, mm).
+    pub centre: Points,
+    /// Growth direction of the mask trees; they grow both ways from the
+    /// centre line (up, limited by the upper line; down, by the lower).
+    #[serde(default)]
+    pub growth: Growth,
+    /// Parameters of the mask trees.
+    #[serde(default)]
+    pub params: TreeParams,
+    /// Circles `[x, y, radius]` (mm): composite 2 grows only inside them,
+    /// composite 4 stamps only inside them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub circles: Vec<[f64; 3]>,
+    /// The shape stamped at every mask vertex (default circle).
+    #[serde(default = "default_stamp")]
+    pub stamp: MotifRef,
+    /// Stamp width in mm (0.5–500).
+    #[serde(default = "default_stamp_size")]
+    pub stamp_width: f64,
+    /// Stamp height in mm; default: from the stamp's proportions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stamp_height: Option<f64>,
+    /// Pattern 1–5 composited into the mask (SPEC §1.6).
+    pub pattern: u8,
+    /// The pattern's motifs: none for 1; one for 5; one or two for 2–4.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub motifs: Vec<MotifRef>,
+    /// Tile width in mm (0.5–500).
+    #[serde(default = "default_tile_size")]
+    pub width: f64,
+    /// Tile height in mm; default: from the motif's proportions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Gap between tiles in mm (0–500), patterns 3 and 4.
+    #[serde(default)]
+    pub spacing: f64,
+    /// Draw the mask's outline.
+    #[serde(default = "yes")]
+    pub outline: bool,
+    /// The base: fill/hatch of the whole mask (pattern 1, and under the
+    /// tiles of 2–4).
+    #[serde(default, skip_serializing_if = "PaintSpec::is_default")]
+    pub paint: PaintSpec,
+}
+
+fn default_mask_count() -> u32 {
+    6
+}
+
+fn default_stamp() -> MotifRef {
+    MotifRef::Name(MotifKind::Circle)
+}
+
+fn default_stamp_size() -> f64 {
+    14.0
+}
+
+fn default_tile_size() -> f64 {
+    10.0
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// Final adjustment of one tree, flower or leaf, by its id in the SVG.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdjustSpec {
+    /// The id as written in the SVG, e.g. `front.plum.tree-0.flower-3`.
+    pub id: String,
+    /// Move by `[dx, dy]` mm.
+    #[serde(default, rename = "move", skip_serializing_if = "Option::is_none")]
+    pub offset: Option<[f64; 2]>,
+    /// Turn by this many degrees, clockwise, about its anchor (a tree's
+    /// root, a flower's centre, a leaf's stem end).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<f64>,
+    /// Scale about its anchor (0.01–100).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+    /// Leave it out (a tree takes its flowers and leaves with it).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub hide: bool,
+    /// Draw another motif here (flowers and leaves only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motif: Option<MotifRef>,
+}
+
+fn size(f: &str, v: f64) -> Result<()> {
+    range(f, v, 0.5, 500.0)
+}
+
+fn motifs(f: &str, list: &[MotifRef], min: usize) -> Result<()> {
+    if list.len() < min || list.len() > 5 {
+        return Err(Error::invalid(
+            f,
+            format!("needs {min} to 5 motifs, got {}", list.len()),
+        ));
+    }
+    for (i, m) in list.iter().enumerate() {
+        m.check(&format!("{f}[{i}]"))?;
+    }
+    Ok(())
+}
+
+impl FlowerSpec {
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
+        motifs(&format!("{f}.motifs"), &self.motifs, 1)?;
+        size(&format!("{f}.width"), self.width)?;
+        if let Some(h) = self.height {
+            size(&format!("{f}.height"), h)?;
+        }
+        range(&format!("{f}.turn"), self.turn, 0.0, 180.0)?;
+        range(&format!("{f}.smallest"), self.smallest, 0.05, 1.0)?;
+        self.paint.check(&format!("{f}.paint"))
+    }
+}
+
+impl LeavesSpec {
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
+        if let Some(r) = &self.ring {
+            let f = format!("{f}.ring");
+            motifs(&format!("{f}.motifs"), &r.motifs, 1)?;
+            range(&format!("{f}.count"), r.count, 0, 8)?;
+            range(&format!("{f}.spacing"), r.spacing, 0.0, 500.0)?;
+            size(&format!("{f}.width"), r.width)?;
+            if let Some(h) = r.height {
+                size(&format!("{f}.height"), h)?;
+            }
+            r.paint.check(&format!("{f}.paint"))?;
+        }
+        if let Some(j) = &self.joints {
+            let f = format!("{f}.joints");
+            motifs(&format!("{f}.motifs"), &j.motifs, 1)?;
+            size(&format!("{f}.width"), j.width)?;
+            if let Some(h) = j.height {
+                size(&format!("{f}.height"), h)?;
+            }
+            range(&format!("{f}.angle"), j.angle, -180.0, 180.0)?;
+            j.paint.check(&format!("{f}.paint"))?;
+        }
+        Ok(())
+    }
+}
+
+impl BackgroundSpec {
+    /// The rule of the mask trees.
+    pub fn mask_rule(&self) -> TreeRule {
+        self.rule.unwrap_or(if self.composite <= 2 {
+            TreeRule::Tree2
+        } else {
+            TreeRule::Tree4
+        })
+    }
+
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
+        range(&format!("{f}.composite"), self.composite, 1, 4)?;
+        range(&format!("{f}.count"), self.count, 0, 1000)?;
+        super::validate::points(&format!("{f}.centre"), &self.centre, 2)?;
+        self.params.check(&format!("{f}.params"))?;
+        if matches!(self.composite, 2 | 4) && self.circles.is_empty() {
+            return Err(Error::invalid(
+                format!("{f}.circles"),
+                format!(
+                    "composite {} needs at least one circle [x, y, radius]",
+                    self.composite
+                ),
+            ));
+        }
+        for (i, c) in self.circles.iter().enumerate() {
+            point(&format!("{f}.circles[{i}]"), [c[0], c[1]])?;
+            range(&format!("{f}.circles[{i}][2]"), c[2], 0.1, 10_000.0)?;
+        }
+        self.stamp.check(&format!("{f}.stamp"))?;
+        size(&format!("{f}.stamp_width"), self.stamp_width)?;
+        if let Some(h) = self.stamp_height {
+            size(&format!("{f}.stamp_height"), h)?;
+        }
+        range(&format!("{f}.pattern"), self.pattern, 1, 5)?;
+        let (min, max) = match self.pattern {
+            1 => (0, 0),
+            5 => (1, 1),
+            _ => (1, 2),
+        };
+        let mf = format!("{f}.motifs");
+        if self.motifs.len() < min || self.motifs.len() > max {
+            return Err(Error::invalid(
+                mf,
+                format!(
+                    "pattern {} takes {min}–{max} motifs, got {}",
+                    self.pattern,
+                    self.motifs.len()
+                ),
+            ));
+        }
+        for (i, m) in self.motifs.iter().enumerate() {
+            m.check(&format!("{mf}[{i}]"))?;
+        }
+        size(&format!("{f}.width"), self.width)?;
+        if let Some(h) = self.height {
+            size(&format!("{f}.height"), h)?;
+        }
+        range(&format!("{f}.spacing"), self.spacing, 0.0, 500.0)?;
+        self.paint.check(&format!("{f}.paint"))
+    }
+}
+
+impl AdjustSpec {
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
+        if self.id.trim().is_empty() {
+            return Err(Error::invalid(format!("{f}.id"), "needs an id"));
+        }
+        if let Some(m) = self.offset {
+            point(&format!("{f}.move"), m)?;
+        }
+        if let Some(r) = self.rotate {
+            range(&format!("{f}.rotate"), r, -360.0, 360.0)?;
+        }
+        if let Some(s) = self.scale {
+            range(&format!("{f}.scale"), s, 0.01, 100.0)?;
+        }
+        if let Some(m) = &self.motif {
+            m.check(&format!("{f}.motif"))?;
+        }
+        Ok(())
+    }
+}
