@@ -29,8 +29,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if command -v hyperfine >/dev/null; then
   hyperfine --warmup 3 --runs 20 --export-markdown "$out/cli.md" \
-    -n 'render -o x.svg' "target/release/moyo render -o $tmp/x.svg" \
-    -n 'render -o x.svg --png x.png' "target/release/moyo render -o $tmp/x.svg --png $tmp/x.png"
+    -n 'render -o x.svg' "target/release/moyo render -t tomesode-hem -o $tmp/x.svg" \
+    -n 'render -o x.svg --png x.png' "target/release/moyo render -t tomesode-hem -o $tmp/x.svg --png $tmp/x.png"
 else
   for args in "-o $tmp/x.svg" "-o $tmp/x.svg --png $tmp/x.png"; do
     echo "moyo render $args: 20 runs"

@@ -3,7 +3,7 @@
 //! Measures, with [`std::time::Instant`], the median of several runs (after
 //! warm-up runs that are not counted):
 //!
-//! 1. **Default design** (`templates::get(templates::DEFAULT)`): parsing the
+//! 1. **The `tomesode-hem` design** (the default before the kimono templates): parsing the
 //!    description, building the scene, writing the SVG string, rendering the
 //!    PNG preview at 150 dpi (the CLI default), and the whole chain end to
 //!    end; for attribution also `write_number` alone on every path
@@ -209,7 +209,7 @@ fn grouped(n: usize) -> String {
 }
 
 fn default_design(cfg: &Config) -> Result<(), moyo::Error> {
-    let template = templates::get(templates::DEFAULT)?;
+    let template = templates::get("tomesode-hem")?;
     let (t_parse, spec) = measure(cfg, || template.spec().expect("template parses"));
     let (t_scene, scene) = measure(cfg, || build_scene(&spec).expect("scene builds"));
     let options = svg_options(&spec);

@@ -94,6 +94,14 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
+    /// A user motif could not be used.
+    #[error("motif {name}: {message}")]
+    Motif {
+        /// The motif's file as named in the description.
+        name: String,
+        /// What is wrong with it.
+        message: String,
+    },
     /// The SVG could not be rasterised for the preview.
     #[error("preview: {0}")]
     Preview(String),

@@ -1,15 +1,22 @@
 //! The facade: scene description → scene → SVG / PNG / path dump.
 //!
 //! This is the one place that knows the order of the stages; the CLI calls
-//! only these functions.
+//! only these functions. It is also where user motifs are read from their
+//! SVG files ([`load_motifs`]), since generators never touch files.
 
-use crate::error::Result;
-use crate::motif::kimono::{self, Flow};
+use std::path::Path;
+
+use kurbo::BezPath;
+
+use crate::error::{Error, Result};
+use crate::motif::flora::{user_drawing, Library};
+use crate::motif::kimono::{self, Adjustments, FloraContext, Flow};
+use crate::output::import::{import_svg, ImportOptions};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot;
 use crate::rng::Seed;
 use crate::scene::{Color, Group, Layer, PathBudget, Pen, Scene};
-use crate::spec::SceneSpec;
+use crate::spec::{MotifRef, SceneSpec};
 
 /// How far generation has come, for progress bars.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,19 +27,84 @@ pub struct Progress {
     pub total: usize,
 }
 
-/// Builds the scene of a validated description.
-pub fn build_scene(spec: &SceneSpec) -> Result<Scene> {
-    build_scene_with_progress(spec, &mut |_| {})
+/// Every user motif a description names (`{ svg = "…" }`), in order of
+/// first appearance, without repeats.
+pub fn user_motif_files(spec: &SceneSpec) -> Vec<String> {
+    let mut refs: Vec<&MotifRef> = Vec::new();
+    for layer in &spec.layers {
+        for set in &layer.trees {
+            if let Some(f) = &set.flowers {
+                refs.extend(&f.motifs);
+            }
+            if let Some(r) = &set.leaves.ring {
+                refs.extend(&r.motifs);
+            }
+            if let Some(j) = &set.leaves.joints {
+                refs.extend(&j.motifs);
+            }
+        }
+        if let Some(bg) = &layer.background {
+            refs.push(&bg.stamp);
+            refs.extend(&bg.motifs);
+        }
+    }
+    refs.extend(spec.adjust.iter().filter_map(|a| a.motif.as_ref()));
+    let mut files: Vec<String> = Vec::new();
+    for r in refs {
+        if let MotifRef::File(f) = r {
+            if !files.contains(&f.svg) {
+                files.push(f.svg.clone());
+            }
+        }
+    }
+    files
 }
 
-/// [`build_scene`], reporting progress after every tree.
+/// Reads the user motifs of a description, their paths taken relative to
+/// `base` (the directory of the description file).
+///
+/// # Errors
+/// [`Error::Motif`] naming the file: unreadable, not an SVG, or without a
+/// closed shape to serve as the motif's outline.
+pub fn load_motifs(spec: &SceneSpec, base: &Path) -> Result<Library> {
+    let mut library = Library::new();
+    for name in user_motif_files(spec) {
+        let path = base.join(&name);
+        let fail = |message: String| Error::Motif {
+            name: name.clone(),
+            message,
+        };
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| fail(format!("cannot read {}: {e}", path.display())))?;
+        let imported = import_svg(&text, &ImportOptions::DEFAULT)
+            .map_err(|e| fail(format!("{}: {e}", path.display())))?;
+        let mut paths: Vec<BezPath> = Vec::new();
+        imported
+            .scene
+            .visit_paths(|_, p, t| paths.push(t * p.path.clone()));
+        let drawing = user_drawing(&paths).map_err(|m| fail(format!("{}: {m}", path.display())))?;
+        library.add_user(name.clone(), drawing);
+    }
+    Ok(library)
+}
+
+/// Builds the scene of a validated description, reading user motifs
+/// relative to the current directory.
+pub fn build_scene(spec: &SceneSpec) -> Result<Scene> {
+    build_scene_with_progress(spec, &load_motifs(spec, Path::new("."))?, &mut |_| {})
+}
+
+/// [`build_scene`] with the motifs given, reporting progress after every
+/// tree.
 pub fn build_scene_with_progress(
     spec: &SceneSpec,
+    library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Scene> {
     let seed = Seed(spec.seed);
     let flow = Flow::new(&spec.lines);
     let mut budget = PathBudget::new(spec.limits.max_paths);
+    let mut adjust = Adjustments::new(&spec.adjust);
     let total = spec
         .layers
         .iter()
@@ -43,7 +115,23 @@ pub fn build_scene_with_progress(
     let ids = layer_ids(spec);
     let mut layers = Vec::with_capacity(spec.layers.len());
     for (index, (layer, id)) in spec.layers.iter().zip(ids).enumerate() {
+        let depth = layer.depth.unwrap_or(index as i32);
+        let cx = FloraContext {
+            library,
+            seed,
+            depth,
+        };
         let mut content = Group::new(format!("{id}.motifs"));
+        if let Some(bg) = &layer.background {
+            let group = kimono::background::background(
+                bg,
+                &format!("{id}.background"),
+                &flow,
+                &cx,
+                &mut budget,
+            )?;
+            content.push_group(group);
+        }
         for (k, set) in layer.trees.iter().enumerate() {
             let set_id = format!("{id}.{}", kimono::set_id(set, k));
             let mut tree_done = || {
@@ -55,7 +143,8 @@ pub fn build_scene_with_progress(
                 &set_id,
                 &layer.limbs,
                 &flow,
-                seed,
+                &cx,
+                &mut adjust,
                 &mut budget,
                 &mut tree_done,
             )?;
@@ -65,10 +154,11 @@ pub fn build_scene_with_progress(
             id,
             name: layer.name.clone(),
             pen: layer.pen,
-            depth: layer.depth.unwrap_or(index as i32),
+            depth,
             content,
         });
     }
+    adjust.finish()?;
     let mut pens: Vec<Pen> = spec
         .pens
         .iter()
@@ -132,17 +222,21 @@ pub struct Rendered {
 }
 
 /// Builds the scene, runs the plot stages the description asks for and
-/// writes its SVG.
+/// writes its SVG; user motifs are read relative to the current directory.
 pub fn render(spec: &SceneSpec) -> Result<Rendered> {
-    render_with_progress(spec, &mut |_| {})
+    render_with_progress(spec, &load_motifs(spec, Path::new("."))?, &mut |_| {})
 }
 
-/// [`render`] with progress reports.
+/// [`render`] with the motifs given and progress reports.
 pub fn render_with_progress(
     spec: &SceneSpec,
+    library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Rendered> {
-    let scene = plot::run(build_scene_with_progress(spec, progress)?, &spec.plot)?;
+    let scene = plot::run(
+        build_scene_with_progress(spec, library, progress)?,
+        &spec.plot,
+    )?;
     let svg = to_svg(&scene, &svg_options(spec));
     Ok(Rendered { scene, svg })
 }

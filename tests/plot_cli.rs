@@ -1,5 +1,8 @@
 //! `moyo plot` and `moyo stats` through the binary: formats, stages, stats
-//! JSON, and bad input leaving no output file.
+//! JSON, and bad input leaving no output file; AxiDraw documentation layers
+//! (`%` names) kept in SVG and left out of everything plotted; and real
+//! interpreters (pygcode, hp2xx) reading our G-code and HPGL, when
+//! `MOYO_PYTHON` and `MOYO_HP2XX` name them (`.ci/run` sets both).
 
 use std::fs;
 use std::path::Path;
@@ -35,6 +38,15 @@ fn stats_json(dir: &TempDir, file: &str) -> serde_json::Value {
     serde_json::from_slice(&out).expect("stats --json prints JSON")
 }
 
+/// The numbers of the pens an SVG written by moyo draws with (its
+/// `pen-N` Inkscape layers), in document order.
+fn pen_numbers(svg: &str) -> Vec<f64> {
+    svg.split("<g id=\"pen-")
+        .skip(1)
+        .map(|rest| rest[..rest.find('"').unwrap()].parse().unwrap())
+        .collect()
+}
+
 fn number(v: &serde_json::Value, key: &str) -> f64 {
     v[key]
         .as_f64()
@@ -50,7 +62,9 @@ fn stats_json_has_totals_and_layers() {
     assert!(number(&s, "pen_up_mm") > 0.0);
     assert!(number(&s, "plot_time_s") > 0.0);
     let layers = s["layers"].as_array().expect("layers");
-    assert_eq!(layers.len(), 2, "one per pen");
+    let svg = fs::read_to_string(dir.path().join("hem.svg")).unwrap();
+    assert!(layers.len() >= 2);
+    assert_eq!(layers.len(), pen_numbers(&svg).len(), "one per pen");
     let sum: f64 = layers.iter().map(|l| number(l, "paths")).sum();
     assert_eq!(sum, number(&s, "paths"));
 }
@@ -152,4 +166,431 @@ fn bad_stage_options_are_refused() {
             .stderr(predicate::str::starts_with("error: "));
         assert!(!dir.path().join("out.svg").exists(), "{args:?}");
     }
+}
+
+// ---------------------------------------------------------------------------
+// AxiDraw documentation layers (`%` names): kept in SVG, never plotted.
+
+/// Two documentation layers, `%guides` and `  % 2 notes`, beside pens 1 and
+/// 2 (see the comment at the top of the file).
+const AXIDRAW_LAYERS: &str = include_str!("fixtures/import/axidraw_layers.svg");
+
+/// Everything the fixture plots lies in this box, on the page (mm, y down):
+/// `[x0, y0, x1, y1]`; every point of its documentation layers lies outside.
+const PLOTTED_BOX: [f64; 4] = [20.0, 20.0, 160.0, 70.0];
+
+/// Pen-down length of the fixture's plotted paths: 40 + 40 + 20 + 2π·20 mm.
+fn plotted_ink() -> f64 {
+    100.0 + 2.0 * std::f64::consts::PI * 20.0
+}
+
+/// A directory holding the fixture as `in.svg`.
+fn with_axidraw_layers() -> TempDir {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    fs::write(dir.path().join("in.svg"), AXIDRAW_LAYERS).unwrap();
+    dir
+}
+
+/// The documentation layers of an SVG, in document order: each one's name
+/// and its paths' points on the page.
+fn unplotted_layers(svg: &str) -> Vec<(String, Vec<Vec<kurbo::Point>>)> {
+    use moyo::output::import::{import_svg, ImportOptions};
+    let scene = import_svg(svg, &ImportOptions::DEFAULT)
+        .expect("moyo reads the SVG")
+        .scene;
+    let mut out: Vec<(String, Vec<Vec<kurbo::Point>>)> = Vec::new();
+    for layer in scene.layers.iter().filter(|l| !l.is_plotted()) {
+        let mut paths = Vec::new();
+        layer
+            .content
+            .visit_paths(scene.page_transform(), &mut |p, t| {
+                let path = t * p.path.clone();
+                let mut points = Vec::new();
+                for el in path.elements() {
+                    use kurbo::PathEl::*;
+                    match *el {
+                        MoveTo(a) | LineTo(a) => points.push(a),
+                        QuadTo(a, b) => points.extend([a, b]),
+                        CurveTo(a, b, c) => points.extend([a, b, c]),
+                        ClosePath => {}
+                    }
+                }
+                paths.push(points);
+            });
+        out.push((layer.name.clone(), paths));
+    }
+    out
+}
+
+fn assert_same_unplotted_layers(before: &str, after: &str) {
+    let (a, b) = (unplotted_layers(before), unplotted_layers(after));
+    let names = |v: &[(String, Vec<Vec<kurbo::Point>>)]| -> Vec<String> {
+        v.iter().map(|(n, _)| n.clone()).collect()
+    };
+    assert_eq!(names(&a), ["%guides", "% 2 notes"]);
+    assert_eq!(names(&a), names(&b));
+    for ((name, pa), (_, pb)) in a.iter().zip(&b) {
+        assert_eq!(pa.len(), pb.len(), "{name}: number of paths");
+        for (x, y) in pa.iter().zip(pb) {
+            assert_eq!(x.len(), y.len(), "{name}: {x:?} vs {y:?}");
+            for (p, q) in x.iter().zip(y) {
+                assert!((*p - *q).hypot() < 1e-3, "{name}: {p:?} vs {q:?}");
+            }
+        }
+    }
+}
+
+/// Whether page point `(x, y)` is in [`PLOTTED_BOX`], give or take `slack`.
+fn in_plotted_box(x: f64, y: f64, slack: f64) -> bool {
+    let [x0, y0, x1, y1] = PLOTTED_BOX;
+    x0 - slack <= x && x <= x1 + slack && y0 - slack <= y && y <= y1 + slack
+}
+
+#[test]
+fn documentation_layers_survive_merge_and_sort_unchanged() {
+    let dir = with_axidraw_layers();
+    moyo(&dir)
+        .args(["plot", "in.svg", "--merge", "--sort", "-o", "out.svg"])
+        .args(["--png", "out.png"])
+        .assert()
+        .success()
+        // The summary counts what is plotted: 3 paths after merging.
+        .stderr(predicate::str::contains("(3 paths, 226 mm pen-down"));
+    let out = fs::read_to_string(dir.path().join("out.svg")).unwrap();
+    for label in ["%guides", "% 2 notes"] {
+        assert!(
+            out.contains(&format!("inkscape:label=\"{label}\"")),
+            "{label} is a layer of its own:\n{out}"
+        );
+    }
+    assert_same_unplotted_layers(AXIDRAW_LAYERS, &out);
+    assert!(dir.path().join("out.png").exists());
+
+    // Stats: the documentation layers are listed, flagged, and not counted.
+    for (file, plotted_paths) in [("in.svg", 4.0), ("out.svg", 3.0)] {
+        let s = stats_json(&dir, file);
+        let layers = s["layers"].as_array().expect("layers");
+        let flags: Vec<(&str, bool)> = layers
+            .iter()
+            .map(|l| (l["name"].as_str().unwrap(), l["plotted"].as_bool().unwrap()))
+            .collect();
+        assert_eq!(
+            flags,
+            [
+                ("%guides", false),
+                ("% 2 notes", false),
+                ("black", true),
+                ("red", true)
+            ],
+            "{file}"
+        );
+        assert_eq!(number(&s, "paths"), plotted_paths, "{file}");
+        // usvg's circle (four cubics) is a little longer than 2πr.
+        let ink = number(&s, "pen_down_mm");
+        assert!((ink - plotted_ink()).abs() < 0.05, "{file}: {ink}");
+        for key in [
+            "paths",
+            "pen_lifts",
+            "pen_down_mm",
+            "pen_up_mm",
+            "plot_time_s",
+        ] {
+            let plotted: f64 = layers
+                .iter()
+                .filter(|l| l["plotted"] == true)
+                .map(|l| number(l, key))
+                .sum();
+            assert!((plotted - number(&s, key)).abs() < 1e-9, "{file}: {key}");
+        }
+        // The guides' own figures: a 560 mm frame and a 90 mm line.
+        assert_eq!(number(&layers[0], "paths"), 2.0);
+        assert!((number(&layers[0], "pen_down_mm") - 650.0).abs() < 0.01);
+    }
+}
+
+#[test]
+fn gcode_and_hpgl_leave_documentation_layers_out() {
+    let dir = with_axidraw_layers();
+    moyo(&dir)
+        .args(["plot", "in.svg", "-o", "out.gcode"])
+        .assert()
+        .success();
+    let g = fs::read_to_string(dir.path().join("out.gcode")).unwrap();
+    let mut moves = 0;
+    for line in g
+        .lines()
+        .filter(|l| l.starts_with("G0") || l.starts_with("G1"))
+    {
+        let word = |c: char| -> f64 {
+            let w = line.split(' ').find(|w| w.starts_with(c)).unwrap();
+            w[1..].parse().unwrap()
+        };
+        // Origin bottom-left, Y up, on a 100 mm high page.
+        let (x, y) = (word('X'), 100.0 - word('Y'));
+        assert!(
+            in_plotted_box(x, y, 1e-9) || (x, y) == (0.0, 100.0),
+            "{line}"
+        );
+        moves += 1;
+    }
+    assert!(moves > 20, "{g}");
+    assert!(!g.contains("note") && !g.contains("frame") && !g.contains("pen 3"));
+
+    for args in [&[][..], &["--cutter"]] {
+        moyo(&dir)
+            .args(["plot", "in.svg", "-o", "out.plt"])
+            .args(args)
+            .assert()
+            .success();
+        let h = fs::read_to_string(dir.path().join("out.plt")).unwrap();
+        assert!(h.contains("SP1;") && h.contains("SP2;"), "{h}");
+        assert!(!h.contains("SP3;") && !h.contains("SP4;"), "{h}");
+        // The knife offset and the overcut reach a little past a shape.
+        let slack = if args.is_empty() { 1e-9 } else { 1.3 };
+        for ins in h.split(';').map(str::trim) {
+            let Some(rest) = ins.strip_prefix("PU").or_else(|| ins.strip_prefix("PD")) else {
+                continue;
+            };
+            let n: Vec<f64> = rest
+                .split(',')
+                .filter(|t| !t.is_empty())
+                .map(|t| t.parse::<f64>().unwrap() / 40.0)
+                .collect();
+            for c in n.chunks(2) {
+                assert!(in_plotted_box(c[0], 100.0 - c[1], slack), "{ins}");
+            }
+        }
+    }
+}
+
+#[test]
+fn documentation_layers_are_neither_hatched_nor_occluded() {
+    let dir = with_axidraw_layers();
+    moyo(&dir)
+        .args([
+            "plot",
+            "in.svg",
+            "--hatch",
+            "2",
+            "--occlude",
+            "-o",
+            "out.svg",
+        ])
+        .assert()
+        .success();
+    let out = fs::read_to_string(dir.path().join("out.svg")).unwrap();
+    assert_same_unplotted_layers(AXIDRAW_LAYERS, &out);
+    let s = stats_json(&dir, "out.svg");
+    assert!((number(&s, "pen_down_mm") - plotted_ink()).abs() < 0.05);
+}
+
+// ---------------------------------------------------------------------------
+// Real interpreters read our G-code and HPGL.
+//
+// Each test runs when its variable names the program (`.ci/run` installs
+// both); without it the test says so and passes, unless `CI` is set, where
+// a missing interpreter is a failure (as the vpype test in compat.rs).
+
+/// The program named by `var`, or `None` (with a note) outside CI.
+fn interpreter(var: &str) -> Option<std::ffi::OsString> {
+    let value = std::env::var_os(var);
+    if value.is_none() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "{var} is not set in CI; .ci/run sets it"
+        );
+        eprintln!("skipped: set {var} to run this test (.ci/run does)");
+    }
+    value
+}
+
+/// Reads a G-code program with pygcode (a real G-code parser and machine
+/// model): every line must parse, with no stray words; pen state follows
+/// the spindle (`M3` down, `M5` up). Prints JSON: the number of pen-down
+/// strokes, the length drawn, the box of the drawn points (machine mm), the
+/// number of rapid moves with the pen down, and whether the pen is up at
+/// the end.
+const PYGCODE_CHECK: &str = r#"
+import json, math, sys
+from pygcode import Line, Machine
+
+machine = Machine()
+strokes = 0
+drawn = 0.0
+box = None
+rapid_down = 0
+lines = 0
+for number, text in enumerate(open(sys.argv[1], encoding="utf-8"), 1):
+    try:
+        line = Line(text.rstrip("\n"))
+    except Exception as e:
+        sys.exit("line %d %r: %s" % (number, text, e))
+    if line.block.modal_params:
+        sys.exit("line %d %r: words without a command: %s" % (number, text, line.block.modal_params))
+    was_down = str(machine.mode.spindle).startswith("M03")
+    x0, y0 = machine.pos.X, machine.pos.Y
+    machine.process_block(line.block)
+    down = str(machine.mode.spindle).startswith("M03")
+    x1, y1 = machine.pos.X, machine.pos.Y
+    if down and not was_down:
+        strokes += 1
+    if was_down and down and (x0, y0) != (x1, y1):
+        if any(str(g).startswith("G00") for g in line.block.gcodes):
+            rapid_down += 1
+        drawn += math.hypot(x1 - x0, y1 - y0)
+        for x, y in ((x0, y0), (x1, y1)):
+            box = [x, y, x, y] if box is None else [
+                min(box[0], x), min(box[1], y), max(box[2], x), max(box[3], y)]
+    lines += 1
+print(json.dumps({
+    "lines": lines,
+    "strokes": strokes,
+    "drawn_mm": drawn,
+    "box": box,
+    "rapid_down": rapid_down,
+    "pen_up_at_end": not str(machine.mode.spindle).startswith("M03"),
+}))
+"#;
+
+fn pygcode_check(python: &std::ffi::OsStr, gcode: &Path) -> serde_json::Value {
+    let out = std::process::Command::new(python)
+        .arg("-c")
+        .arg(PYGCODE_CHECK)
+        .arg(gcode)
+        .output()
+        .expect("python runs");
+    assert!(
+        out.status.success(),
+        "pygcode rejects {}:\n{}",
+        gcode.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("the check prints JSON")
+}
+
+#[test]
+fn pygcode_reads_our_gcode_and_draws_the_plotted_paths() {
+    let Some(python) = interpreter("MOYO_PYTHON") else {
+        return;
+    };
+    let dir = with_axidraw_layers();
+    moyo(&dir)
+        .args(["plot", "in.svg", "-o", "out.gcode"])
+        .assert()
+        .success();
+    let r = pygcode_check(&python, &dir.path().join("out.gcode"));
+    assert_eq!(r["strokes"], 4, "{r}");
+    assert_eq!(r["rapid_down"], 0, "{r}");
+    assert_eq!(r["pen_up_at_end"], true, "{r}");
+    // Flattening within 0.02 mm shortens the circle a little.
+    let drawn = number(&r, "drawn_mm");
+    assert!((drawn - plotted_ink()).abs() < 0.1, "{drawn}");
+    // Machine Y = 100 − page y: the plotted box, and nothing of the guides.
+    let b: Vec<f64> = r["box"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let [x0, y0, x1, y1] = PLOTTED_BOX;
+    let expected = [x0, 100.0 - y1, x1, 100.0 - y0];
+    for (got, want) in b.iter().zip(expected) {
+        assert!((got - want).abs() < 1e-3, "{b:?} vs {expected:?}");
+    }
+
+    // The default design, sorted, with travel at G0 and several pens.
+    let dir = with_default_design();
+    moyo(&dir)
+        .args(["plot", "hem.svg", "--sort", "--travel-feed", "0"])
+        .args(["-o", "hem.gcode"])
+        .assert()
+        .success();
+    let r = pygcode_check(&python, &dir.path().join("hem.gcode"));
+    let s = stats_json(&dir, "hem.svg");
+    assert!(number(&r, "strokes") >= number(&s, "paths"), "{r}");
+    assert_eq!(r["rapid_down"], 0, "{r}");
+    let (drawn, ink) = (number(&r, "drawn_mm"), number(&s, "pen_down_mm"));
+    assert!((drawn - ink).abs() < 0.01 * ink, "{drawn} vs {ink}");
+}
+
+/// The number after `key` on hp2xx's report line that starts with it.
+fn hp2xx_figure(report: &str, key: &str) -> f64 {
+    report
+        .lines()
+        .find_map(|l| l.trim().strip_prefix(key))
+        .unwrap_or_else(|| panic!("no '{key}' in:\n{report}"))
+        .trim()
+        .parse()
+        .unwrap_or_else(|e| panic!("{key}: {e}\n{report}"))
+}
+
+/// Every number on hp2xx's report line that starts with `key`.
+fn hp2xx_numbers(report: &str, key: &str) -> Vec<f64> {
+    let line = report
+        .lines()
+        .find_map(|l| l.trim().strip_prefix(key))
+        .unwrap_or_else(|| panic!("no '{key}' in:\n{report}"));
+    line.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+        .filter(|t| !t.is_empty() && *t != "." && *t != "...")
+        .map(|t| t.parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn hp2xx_draws_our_hpgl() {
+    let Some(hp2xx) = interpreter("MOYO_HP2XX") else {
+        return;
+    };
+    let dir = with_axidraw_layers();
+    for args in [&[][..], &["--cutter"]] {
+        moyo(&dir)
+            .args(["plot", "in.svg", "-o", "out.plt"])
+            .args(args)
+            .assert()
+            .success();
+        let _ = fs::remove_file(dir.path().join("hp2xx.svg"));
+        let out = std::process::Command::new(&hp2xx)
+            .current_dir(dir.path())
+            .args(["-m", "svg", "-f", "hp2xx.svg", "out.plt"])
+            .output()
+            .expect("hp2xx runs");
+        let report = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {report}");
+        let drawing = fs::read_to_string(dir.path().join("hp2xx.svg")).unwrap();
+        assert!(drawing.contains("<path"), "{drawing}");
+        // Every instruction understood; the documentation layers' pens
+        // (3 and 4) are never selected.
+        assert_eq!(hp2xx_figure(&report, "HPGL command(s) ignored:"), 0.0);
+        assert_eq!(hp2xx_figure(&report, "Unexpected event(s):"), 0.0);
+        assert_eq!(hp2xx_numbers(&report, "Pens used:"), [1.0, 2.0], "{report}");
+        // The drawing's extent in plotter units (40 per mm, Y up): the
+        // plotted box, a knife offset and overcut past it when cutting.
+        let range = hp2xx_numbers(&report, "Coordinate range:");
+        let [x0, y0, x1, y1] = PLOTTED_BOX.map(|v| v * 40.0);
+        let expected = [x0, 4000.0 - y1, x1, 4000.0 - y0];
+        let slack = if args.is_empty() { 0.5 } else { 1.3 * 40.0 };
+        assert_eq!(range.len(), 4, "{report}");
+        for (got, want) in range.iter().zip(expected) {
+            assert!((got - want).abs() <= slack, "{range:?} vs {expected:?}");
+        }
+    }
+
+    // The default design: several pens, curves, long strokes in PD chunks.
+    let dir = with_default_design();
+    let pens = pen_numbers(&fs::read_to_string(dir.path().join("hem.svg")).unwrap());
+    moyo(&dir)
+        .args(["plot", "hem.svg", "--sort", "-o", "hem.plt"])
+        .assert()
+        .success();
+    let out = std::process::Command::new(&hp2xx)
+        .current_dir(dir.path())
+        .args(["-m", "pbm", "-f", "hem.pbm", "hem.plt"])
+        .output()
+        .expect("hp2xx runs");
+    let report = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{report}");
+    assert!(fs::metadata(dir.path().join("hem.pbm")).unwrap().len() > 0);
+    assert_eq!(hp2xx_figure(&report, "HPGL command(s) ignored:"), 0.0);
+    assert_eq!(hp2xx_figure(&report, "Unexpected event(s):"), 0.0);
+    assert_eq!(hp2xx_numbers(&report, "Pens used:"), pens, "{report}");
 }

@@ -1,6 +1,6 @@
 //! Snapshot tests of the geometry, through the library and the path dump
 //! (`Rendered::dump`): one per tree rule, one outline-style tree, one per
-//! built-in template. Snapshots live in `tests/snapshots/`; see
+//! built-in motif, one per built-in template. Snapshots live in `tests/snapshots/`; see
 //! tests/README.md for how to review a change.
 
 use moyo::project::{self, Rendered};
@@ -123,4 +123,40 @@ fn every_template() {
         assert_eq!(dump.lines().count(), rendered.scene.path_count());
         insta::assert_snapshot!(format!("template-{}", t.name), dump);
     }
+}
+
+/// Every built-in motif at its defaults, 20 mm wide, one path each.
+#[test]
+fn every_motif() {
+    use kurbo::Affine;
+    use moyo::motif::flora::{draw, MotifParams};
+    use moyo::spec::MotifKind;
+    use moyo::{Group, Layer, Margins, Page, PaperName, Scene, Seed, Style};
+
+    let mut group = Group::new("motifs");
+    for (i, kind) in MotifKind::ALL.into_iter().enumerate() {
+        let d = draw(kind, &MotifParams::DEFAULT, &mut Seed(1).stream());
+        let at = Affine::translate((25.0 + 25.0 * (i % 7) as f64, 25.0 + 40.0 * (i / 7) as f64));
+        let path = d.to_path(at * Affine::scale_non_uniform(20.0, 20.0 * d.aspect));
+        group.push_path(format!("{kind:?}").to_lowercase(), path, Style::default());
+    }
+    let scene = Scene {
+        page: Page::named(
+            PaperName::A4,
+            moyo::Orientation::Landscape,
+            Margins::uniform(10.0),
+        ),
+        pens: Vec::new(),
+        layers: vec![Layer {
+            id: "motifs".into(),
+            name: "motifs".into(),
+            pen: 1,
+            depth: 0,
+            content: group,
+        }],
+        description: None,
+    };
+    let dump = moyo::output::path_dump(&scene, PRECISION);
+    assert_eq!(dump.lines().count(), MotifKind::ALL.len());
+    insta::assert_snapshot!("motifs", dump);
 }

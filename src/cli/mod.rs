@@ -56,6 +56,10 @@ struct RenderArgs {
     /// Render a built-in template instead of a file.
     #[arg(short, long, conflicts_with = "scene")]
     template: Option<String>,
+    /// Reopen a design: render the description embedded in an SVG that
+    /// moyo wrote (byte-identical output when nothing is changed).
+    #[arg(long, value_name = "SVG", conflicts_with_all = ["scene", "template"])]
+    from: Option<PathBuf>,
     /// Output SVG file.
     #[arg(short, long, default_value = "moyo.svg")]
     output: PathBuf,
@@ -123,24 +127,45 @@ pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
     }
 }
 
-/// Loads the scene to render: a file, a named template or the default.
-fn load(args: &RenderArgs) -> Result<SceneSpec, CliError> {
-    match (&args.scene, &args.template) {
-        (Some(path), _) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?;
-            SceneSpec::parse(&text, Format::from_path(path))
-                .map_err(|e| CliError::Message(format!("{}:{e}", path.display())))
+/// Loads the scene to render — a file, the description embedded in an SVG,
+/// a named template or the default — with the directory its user motifs
+/// are read from.
+fn load(args: &RenderArgs) -> Result<(SceneSpec, PathBuf), CliError> {
+    let read = |path: &Path| {
+        std::fs::read_to_string(path)
+            .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))
+    };
+    let base = |path: &Path| {
+        path.parent()
+            .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+    };
+    match (&args.scene, &args.from, &args.template) {
+        (Some(path), _, _) => {
+            let spec = SceneSpec::parse(&read(path)?, Format::from_path(path))
+                .map_err(|e| CliError::Message(format!("{}:{e}", path.display())))?;
+            Ok((spec, base(path)))
         }
-        (None, name) => {
+        (None, Some(svg), _) => {
+            let text = moyo::output::embedded_description(&read(svg)?).ok_or_else(|| {
+                CliError::Message(format!(
+                    "{}: carries no scene description (only SVGs written by moyo render can be reopened)",
+                    svg.display()
+                ))
+            })?;
+            let spec = SceneSpec::parse(&text, Format::Toml).map_err(|e| {
+                CliError::Message(format!("{} (embedded description):{e}", svg.display()))
+            })?;
+            Ok((spec, base(svg)))
+        }
+        (None, None, name) => {
             let name = name.as_deref().unwrap_or(templates::DEFAULT);
-            Ok(templates::get(name)?.spec()?)
+            Ok((templates::get(name)?.spec()?, PathBuf::from(".")))
         }
     }
 }
 
 fn render(args: &RenderArgs) -> Result<(), CliError> {
-    let mut spec = load(args)?;
+    let (mut spec, base) = load(args)?;
     if let Some(seed) = args.seed {
         spec.seed = seed;
     }
@@ -152,7 +177,8 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::Message(format!("command line: {e}")))?;
 
     let bar = DelayedBar::new();
-    let rendered = project::render_with_progress(&spec, &mut |p| bar.update(p))?;
+    let library = project::load_motifs(&spec, &base)?;
+    let rendered = project::render_with_progress(&spec, &library, &mut |p| bar.update(p))?;
     bar.finish();
 
     // Everything is computed before anything is written, so a failure

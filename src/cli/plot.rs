@@ -380,7 +380,7 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
 fn with_travel(scene: &Scene) -> Scene {
     let flat = plot::flatten::by_pen(scene);
     let mut travel = BezPath::new();
-    for layer in &flat.layers {
+    for layer in flat.layers.iter().filter(|l| l.is_plotted()) {
         let mut at = Point::ZERO;
         layer
             .content

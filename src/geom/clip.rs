@@ -2,14 +2,44 @@
 //! parts outside (SPEC §2.4 "draw only inside that region", and hidden
 //! lines for occlusion).
 //!
-//! The stroke keeps its curves: each of its segments is cut exactly at the
+//! The stroke keeps its curves: each of its segments is cut at the
 //! parameters where it crosses the region's boundary, and each piece is
 //! classified by the containment of its middle point. The boundary is the
-//! region's outline flattened within `tolerance`, so cut points (and the
-//! inside/outside decision near the boundary) are right to within
-//! `tolerance`; the pieces themselves are exact sub-curves of the stroke,
+//! region's outline flattened within `tolerance` (straight edges), so cut
+//! points and the inside/outside decision near the boundary are right to
+//! within the flattening's accuracy, `tolerance` (kurbo's estimate, which
+//! it can exceed a little); the pieces are exact sub-curves of the stroke,
 //! so inside and outside together have exactly the stroke's length.
 //! Strokes that run along the boundary go either way.
+//!
+//! **Every crossing is found.** The middle point can speak for a whole
+//! piece only if the piece does not cross the flattened outline, so the
+//! cuts must be all the crossings of the exact stroke curve with the
+//! edges. Relative to an edge, a segment is a cubic polynomial (its signed
+//! distance from the edge's line) whose Bernstein coefficients are cross
+//! products with the control points; its sign changes are isolated by
+//! Descartes' rule of signs with de Casteljau halving and refined by a
+//! bracketing root-finder (ITP), decisions that rest on signs of computed
+//! values only. kurbo's `PathSeg::intersect_line`, used before, solves the
+//! same cubic in closed form in the power basis and loses roots when its
+//! cubic coefficient nearly cancels — a circle's arc against an edge
+//! parallel to its chord, as near-tangent circles and rectangles tilted by
+//! rounding produce — and a kept piece then ran deep inside the region.
+//! Crossings at or within 1e-9 mm of an edge's end count for the edge, so
+//! a stroke through a vertex of the outline is cut there; an extra cut
+//! costs nothing, as pieces on the same side are joined again. Where the
+//! stroke touches or grazes an edge (roots closer than about 1e-12 in
+//! parameter) it is cut only if it changes side. Containment is decided by
+//! the same polygon (non-zero winding) within the polygon's own box, not
+//! the region's: kurbo flattens a cubic through quadratic curves, so the
+//! polygon can stick out of the region's box a little.
+//!
+//! **Cost.** A segment is tested against the outline edges whose boxes
+//! meet the box of its control points (the edges are kept in horizontal
+//! bands); one that does not reach an edge's line costs a few products,
+//! one that does is halved only while the crossing may lie off the edge,
+//! and each crossing is refined once. The work is linear in the segments
+//! times the edges near each, never all against all.
 
 use kurbo::{BezPath, Line, ParamCurve, PathEl, PathSeg, Point, Rect};
 
@@ -72,7 +102,15 @@ impl StrokeClipper {
                 edges.push(Line::new(poly[i], poly[(i + 1) % poly.len()]));
             }
         }
-        let bounds = region.bounds();
+        // The box of the flattened outline, not the region's: kurbo
+        // flattens a cubic through quadratic curves, so a vertex may lie a
+        // little outside the region's box, and points near it would be
+        // taken for outside the polygon without looking at its edges.
+        let bounds = edges
+            .iter()
+            .map(|e| Rect::from_points(e.p0, e.p1))
+            .reduce(|a, b| a.union(b))
+            .unwrap_or(Rect::ZERO);
         let n_bands = (edges.len() / 4).clamp(1, 4096);
         let band_height = (bounds.height() / n_bands as f64).max(f64::MIN_POSITIVE);
         let mut bands = vec![Vec::new(); n_bands];
@@ -212,14 +250,14 @@ impl StrokeClipper {
     /// and without near-duplicates.
     fn cuts(&self, seg: &PathSeg) -> Vec<f64> {
         let mut ts = vec![0.0];
-        let bb = kurbo::ParamCurveExtrema::bounding_box(seg);
+        let ctrl = cubic_points(seg);
+        // The box of the control points holds the segment, whatever the
+        // rounding (the exact bounding box rests on solving for extrema).
+        let bb = ctrl[1..]
+            .iter()
+            .fold(Rect::from_points(ctrl[0], ctrl[0]), |r, p| r.union_pt(*p));
         for e in self.edges_near(bb.inflate(1e-9, 1e-9)) {
-            for hit in seg.intersect_line(self.edges[e]) {
-                let t = hit.segment_t;
-                if t > PARAM_EPS && t < 1.0 - PARAM_EPS {
-                    ts.push(t);
-                }
-            }
+            edge_crossings(seg, &ctrl, self.edges[e], &mut ts);
         }
         ts.push(1.0);
         ts.sort_by(f64::total_cmp);
@@ -230,6 +268,230 @@ impl StrokeClipper {
         }
         ts
     }
+}
+
+/// A crossing this close (mm) beyond either end of an outline edge still
+/// counts: where the stroke crosses the outline at a vertex, rounding may
+/// put the crossing just outside both edges that meet there. An extra cut
+/// costs nothing (pieces on the same side are joined again); a missed one
+/// would leave a piece on both sides.
+const EDGE_SLACK: f64 = 1e-9;
+
+/// Refining a crossing stops when its bracket is this narrow in the
+/// segment's parameter.
+const ROOT_EPS: f64 = 1e-14;
+
+/// Subdividing a parameter interval stops at this depth (an interval of
+/// 2⁻⁴⁰ ≈ 1e-12); see [`isolate`].
+const MAX_DEPTH: u32 = 40;
+
+/// An interval holding one crossing of an edge's line is halved until it
+/// lies on the edge, or is dropped as off the edge, down to this depth;
+/// below it, the crossing is found and then checked (see [`isolate`]).
+const REFINE_DEPTH: u32 = 16;
+
+/// Bernstein coefficients of a polynomial of degree ≤ 3, as a cubic.
+type Coefs = [f64; 4];
+
+/// The control points of a segment as a cubic (lines and quadratic curves
+/// degree-elevated: the same curve, with the same parameter).
+fn cubic_points(seg: &PathSeg) -> [Point; 4] {
+    match *seg {
+        PathSeg::Line(l) => [
+            l.p0,
+            l.p0.lerp(l.p1, 1.0 / 3.0),
+            l.p0.lerp(l.p1, 2.0 / 3.0),
+            l.p1,
+        ],
+        PathSeg::Quad(q) => {
+            let c = q.raise();
+            [c.p0, c.p1, c.p2, c.p3]
+        }
+        PathSeg::Cubic(c) => [c.p0, c.p1, c.p2, c.p3],
+    }
+}
+
+/// Appends the parameters in (0, 1) where `seg` (with control points
+/// `ctrl`, as a cubic) crosses the straight edge `edge`.
+///
+/// Two cubic polynomials describe the segment relative to the edge: its
+/// signed distance from the edge's line (times the edge's length) and its
+/// position along the edge (0 at the edge's start, 1 at its end). Their
+/// Bernstein coefficients are the cross and dot products of the edge's
+/// direction with the control points, and [`isolate`] finds the sign
+/// changes of the first where the second may lie in [0, 1]. (kurbo's
+/// `PathSeg::intersect_line` solves the same polynomial in closed form in
+/// the power basis, which loses roots when the cubic coefficient nearly
+/// cancels: a circular arc against an edge parallel to its chord, as the
+/// flattened outline of a near-tangent circle or a rectangle that rounding
+/// has tilted by 1e-16 has.) A crossing counts when it lies on the edge,
+/// within [`EDGE_SLACK`].
+fn edge_crossings(seg: &PathSeg, ctrl: &[Point; 4], edge: Line, out: &mut Vec<f64>) {
+    let d = edge.p1 - edge.p0;
+    let len2 = d.hypot2();
+    if len2 == 0.0 || !len2.is_finite() {
+        return;
+    }
+    let f = ctrl.map(|p| d.cross(p - edge.p0));
+    if sign_variations(&f) == 0 {
+        // The segment does not cross the edge's line (the common case).
+        return;
+    }
+    let inv = len2.recip();
+    let g = ctrl.map(|p| d.dot(p - edge.p0) * inv);
+    let slack = EDGE_SLACK / len2.sqrt();
+    let first = out.len();
+    isolate(&f, (-slack, 1.0 + slack), f, g, (0.0, 1.0), 0, out);
+    // The hull test in `isolate` is coarse; check each crossing exactly.
+    let mut k = first;
+    while k < out.len() {
+        let u = (seg.eval(out[k]) - edge.p0).dot(d) * inv;
+        if (-slack..=1.0 + slack).contains(&u) {
+            k += 1;
+        } else {
+            out.swap_remove(k);
+        }
+    }
+}
+
+/// Appends the parameters in (a, b) where the polynomial `whole` (the
+/// distance from an edge's line, coefficients on [0, 1]) changes sign
+/// while the position along the edge may lie in `range`; `f` and `g` are
+/// the coefficients of the distance and the position on [a, b].
+///
+/// Root isolation by Descartes' rule of signs in the Bernstein basis: an
+/// interval whose coefficients of `f` never change sign holds no root, one
+/// whose coefficients change sign once holds exactly one (found by
+/// [`refine`]), and any other is halved (de Casteljau) and both halves
+/// looked at again. Every decision compares signs of values computed from
+/// the coefficients, so no crossing is lost however ill-conditioned the
+/// power-basis form would be. Only an interval still undecided at
+/// [`MAX_DEPTH`] (several roots within about 1e-12 of each other: a stroke
+/// touching or grazing the line) is decided by the signs at its ends: one
+/// cut in its middle if they differ, none if not.
+///
+/// An interval whose coefficients of `g` all lie on one side of `range`
+/// is off the edge (the convex hull property) and dropped. Many edges near
+/// a segment have a line that crosses it somewhere but not on the edge, so
+/// an interval with one crossing is halved on while it may lie off the
+/// edge (to [`REFINE_DEPTH`]): halving is cheaper than refining.
+fn isolate(
+    whole: &Coefs,
+    range: (f64, f64),
+    f: Coefs,
+    g: Coefs,
+    (a, b): (f64, f64),
+    depth: u32,
+    out: &mut Vec<f64>,
+) {
+    let (lo, hi) = range;
+    if g.iter().all(|u| *u < lo) || g.iter().all(|u| *u > hi) {
+        return;
+    }
+    match sign_variations(&f) {
+        0 => {}
+        1 if depth >= REFINE_DEPTH || g.iter().all(|u| (lo..=hi).contains(u)) => {
+            out.push(refine(whole, a, b, first_sign(&f)))
+        }
+        v if depth >= MAX_DEPTH => {
+            if v > 0 && first_sign(&f) != last_sign(&f) {
+                out.push(0.5 * (a + b));
+            }
+        }
+        _ => {
+            let (fl, fr) = split_half(&f);
+            let (gl, gr) = split_half(&g);
+            let m = 0.5 * (a + b);
+            if fl[3] == 0.0 && last_sign(&fl) != first_sign(&fr) {
+                // A sign change exactly at the split point is interior to
+                // neither half.
+                out.push(m);
+            }
+            isolate(whole, range, fl, gl, (a, m), depth + 1, out);
+            isolate(whole, range, fr, gr, (m, b), depth + 1, out);
+        }
+    }
+}
+
+/// How often the sign changes along `c`, zeros skipped.
+fn sign_variations(c: &Coefs) -> u32 {
+    let mut v = 0;
+    let mut last = 0.0;
+    for &x in c {
+        if x != 0.0 {
+            if last != 0.0 && (x > 0.0) != (last > 0.0) {
+                v += 1;
+            }
+            last = x;
+        }
+    }
+    v
+}
+
+/// Whether the first non-zero value of `c` is positive (the sign of the
+/// polynomial just after the interval's start).
+fn first_sign(c: &Coefs) -> bool {
+    c.iter().find(|x| **x != 0.0).is_some_and(|x| *x > 0.0)
+}
+
+/// Whether the last non-zero value of `c` is positive (the sign of the
+/// polynomial just before the interval's end).
+fn last_sign(c: &Coefs) -> bool {
+    c.iter()
+        .rev()
+        .find(|x| **x != 0.0)
+        .is_some_and(|x| *x > 0.0)
+}
+
+/// The Bernstein coefficients of the two halves of an interval (de
+/// Casteljau).
+fn split_half(c: &Coefs) -> (Coefs, Coefs) {
+    let [c0, c1, c2, c3] = *c;
+    let (m01, m12, m23) = (0.5 * (c0 + c1), 0.5 * (c1 + c2), 0.5 * (c2 + c3));
+    let (m012, m123) = (0.5 * (m01 + m12), 0.5 * (m12 + m23));
+    let mid = 0.5 * (m012 + m123);
+    ([c0, m01, m012, mid], [mid, m123, m23, c3])
+}
+
+/// The polynomial with Bernstein coefficients `c` (on [0, 1]) at `t`.
+fn bernstein_eval(c: &Coefs, t: f64) -> f64 {
+    let mt = 1.0 - t;
+    let [c0, c1, c2, c3] = *c;
+    let (m01, m12, m23) = (mt * c0 + t * c1, mt * c1 + t * c2, mt * c2 + t * c3);
+    let (m012, m123) = (mt * m01 + t * m12, mt * m12 + t * m23);
+    mt * m012 + t * m123
+}
+
+/// The one sign change of the polynomial `c` (coefficients on [0, 1]) in
+/// (a, b), where it starts positive if `start_positive`: by the ITP method
+/// (bisection's worst case, usually far fewer steps), evaluating the
+/// polynomial afresh from `c` at every step, to [`ROOT_EPS`]. Where
+/// rounding makes the values at the ends disagree with the signs the
+/// coefficients gave, by bisection on the sign alone.
+fn refine(c: &Coefs, a: f64, b: f64, start_positive: bool) -> f64 {
+    let s = if start_positive { -1.0 } else { 1.0 };
+    let f = |t: f64| s * bernstein_eval(c, t);
+    let (ya, yb) = (f(a), f(b));
+    if ya < 0.0 && yb > 0.0 {
+        return kurbo::common::solve_itp(f, a, b, ROOT_EPS, 1, 0.2 / (b - a), ya, yb);
+    }
+    let (mut a, mut b) = (a, b);
+    while b - a > ROOT_EPS {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        let v = f(m);
+        if v == 0.0 {
+            return m;
+        }
+        if v < 0.0 {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
 }
 
 /// One subpath: its segments (a closing line included) and whether it was
@@ -288,8 +550,9 @@ fn subpaths(path: &BezPath) -> Vec<Subpath> {
 mod tests {
     use super::*;
     use crate::geom::region::tests::{arb_region, circle, rect};
+    use crate::geom::region::FillRule;
     use crate::scene::path_length;
-    use kurbo::{CubicBez, Shape};
+    use kurbo::{Affine, Circle, CubicBez, ParamCurveNearest, Shape};
     use proptest::prelude::*;
 
     fn total(paths: &[BezPath]) -> f64 {
@@ -375,6 +638,231 @@ mod tests {
         assert_eq!(c.outside.len(), 1);
     }
 
+    /// Distance from `p` to the clipper's flattened outline.
+    fn outline_distance(clipper: &StrokeClipper, p: Point) -> f64 {
+        clipper
+            .edges
+            .iter()
+            .map(|e| e.nearest(p, 0.0).distance_sq)
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
+
+    /// Points of a piece that lie on the wrong side of the flattened
+    /// outline, farther than `slack` from it (sampled finely: a missed cut
+    /// shows as a run of wrong points, wherever the midpoint falls).
+    fn wrong_side(clipper: &StrokeClipper, c: &Clipped, slack: f64) -> Vec<(Point, bool)> {
+        let mut wrong = Vec::new();
+        for (paths, inside) in [(&c.inside, true), (&c.outside, false)] {
+            for p in paths {
+                for seg in p.segments() {
+                    for k in 1..32 {
+                        let q = seg.eval(k as f64 / 32.0);
+                        if clipper.contains(q) != inside && outline_distance(clipper, q) > slack {
+                            wrong.push((q, inside));
+                        }
+                    }
+                }
+            }
+        }
+        wrong
+    }
+
+    /// The sign changes in (0, 1) of the polynomial with Bernstein
+    /// coefficients `c` (degree 1 to 3), all on the edge.
+    fn bernstein_roots(c: &[f64], out: &mut Vec<f64>) {
+        // Degree elevation to a cubic.
+        let f = match *c {
+            [a, b] => [a, (2.0 * a + b) / 3.0, (a + 2.0 * b) / 3.0, b],
+            [a, b, c] => [a, (a + 2.0 * b) / 3.0, (2.0 * b + c) / 3.0, c],
+            [a, b, c, d] => [a, b, c, d],
+            _ => unreachable!(),
+        };
+        isolate(&f, (0.0, 1.0), f, [0.5; 4], (0.0, 1.0), 0, out);
+    }
+
+    #[test]
+    fn roots_of_a_polynomial_in_bernstein_form() {
+        // -(1-t)³ + 9t(1-t)² - 9t²(1-t) + t³: three roots, one of them
+        // exactly at the first split point.
+        let c = [-1.0, 3.0, -3.0, 1.0];
+        let mut roots = Vec::new();
+        bernstein_roots(&c, &mut roots);
+        roots.sort_by(f64::total_cmp);
+        assert_eq!(roots.len(), 3, "{roots:?}");
+        assert_eq!(roots[1], 0.5);
+        for t in roots {
+            assert!(bernstein_eval(&c, t).abs() < 1e-12, "{t}");
+        }
+        // No sign change: no root, even where the curve touches zero.
+        let mut none = Vec::new();
+        bernstein_roots(&[1.0, -1.0, 1.0], &mut none);
+        bernstein_roots(&[1.0, 0.0, 1.0], &mut none);
+        bernstein_roots(&[0.0, 0.0, 0.0, 0.0], &mut none);
+        // (1 - 2t)² touches zero at 1/2: a double root, no crossing.
+        bernstein_roots(&[1.0, -1.0, 1.0], &mut none);
+        assert!(none.is_empty(), "{none:?}");
+        let mut line = Vec::new();
+        bernstein_roots(&[-1.0, 3.0], &mut line);
+        assert_eq!(line, [0.25]);
+    }
+
+    /// Regression (proptest-regressions/plot/occlude.txt, the rectangle):
+    /// a circle's quarter arc, symmetric about a horizontal axis, against
+    /// the left edge of a rectangle that rounding has tilted by 5e-15 mm.
+    /// The cubic coefficient of the distance polynomial nearly cancels, and
+    /// kurbo's closed-form solver (`PathSeg::intersect_line`) lost the
+    /// crossing: the arc's part inside the rectangle was kept as outside.
+    #[test]
+    fn an_arc_crosses_an_edge_tilted_by_rounding() {
+        let arc = CubicBez::new(
+            (63.177462179298104, 13.25980549061136),
+            (62.185423071280475, 11.199815056576211),
+            (62.185423071280475, 8.80018494342379),
+            (63.177462179298104, 6.740194509388642),
+        );
+        let edge = Line::new(
+            (62.533462714872755, 39.445086108874875),
+            (62.53346271487276, 10.0),
+        );
+        let seg = PathSeg::Cubic(arc);
+        let mut ts = Vec::new();
+        edge_crossings(&seg, &cubic_points(&seg), edge, &mut ts);
+        assert_eq!(ts.len(), 1, "{ts:?}");
+        let q = arc.eval(ts[0]);
+        assert!((q.x - 62.53346271487276).abs() < 1e-9, "{q:?}");
+        assert!((q.y - 11.2222).abs() < 1e-3, "{q:?}");
+
+        let mut outline = BezPath::new();
+        outline.move_to(edge.p0);
+        outline.line_to(edge.p1);
+        outline.line_to((63.53346271487277, 10.0));
+        outline.line_to((63.53346271487277, 39.445086108874875));
+        outline.close_path();
+        let r = Region::new(outline, FillRule::NonZero).unwrap();
+        let clipper = StrokeClipper::new(&r, TOLERANCE);
+        let c = clipper.clip(&BezPath::from_path_segments(std::iter::once(seg)));
+        assert_eq!((c.inside.len(), c.outside.len()), (1, 1), "{c:?}");
+        assert_eq!(c.inside[0].elements()[0], PathEl::MoveTo(arc.p0));
+        assert!(wrong_side(&clipper, &c, 1e-9).is_empty());
+    }
+
+    /// Regression (proptest-regressions/plot/occlude.txt, the circles): a
+    /// circle crossing a smaller one almost tangentially. A flattened edge
+    /// of the small circle is nearly parallel to the chord of the big
+    /// circle's arc, so again the cubic coefficient nearly cancels and a
+    /// crossing was lost; the arc went on as outside while 0.5 mm deep
+    /// inside.
+    #[test]
+    fn near_tangent_circles() {
+        // As on the page: drawn, then moved by the margins.
+        let page = Affine::translate((10.0, 10.0));
+        let back = page
+            * Circle::new((54.7371805476822, 28.615197635560634), 17.14878561741582).to_path(1e-4);
+        let radius = 12.607902449699154;
+        let centre = page * Point::new(52.03490236404308, 33.144545148469895);
+        let front = Region::new(
+            page * Circle::new((52.03490236404308, 33.144545148469895), radius).to_path(1e-4),
+            FillRule::NonZero,
+        )
+        .unwrap();
+        let clipper = StrokeClipper::new(&front, TOLERANCE);
+        let c = clipper.clip(&back);
+        assert_eq!((c.inside.len(), c.outside.len()), (1, 1), "{c:?}");
+        assert!(wrong_side(&clipper, &c, 1e-9).is_empty());
+        // The hidden arc ends on the front circle (within the flattening).
+        let inner = &c.inside[0];
+        for p in [
+            inner.segments().next().unwrap().start(),
+            inner.segments().last().unwrap().end(),
+        ] {
+            let d = (p - centre).hypot() - radius;
+            assert!(d.abs() <= TOLERANCE, "{p:?}: {d}");
+        }
+        // Nothing kept lies deeper inside the front circle than the
+        // flattening allows.
+        for seg in c.outside.iter().flat_map(|p| p.segments()) {
+            for k in 0..=64 {
+                let d = radius - (seg.eval(k as f64 / 64.0) - centre).hypot();
+                assert!(d <= TOLERANCE, "{d}");
+            }
+        }
+        let len = path_length(&back);
+        assert!((total(&c.inside) + total(&c.outside) - len).abs() < 1e-6);
+    }
+
+    /// Regression (proptest-regressions/geom/clip.txt): kurbo flattens a
+    /// cubic through quadratic curves, so the lowest vertex of a flattened
+    /// circle lay 2e-4 mm below the circle's box. The clipper took its box
+    /// for the polygon's and called every point below the region's box
+    /// outside, so a circle stroke grazing the bottom of the outline was
+    /// cut where it crosses an edge but classified by its box.
+    #[test]
+    fn the_flattened_outline_may_leave_the_regions_box() {
+        let centre = Point::new(10.0, 10.0);
+        let (r, offset, gap) = (5.459614719484401, 0.12114267007316325, -0.18670842278100108);
+        let disc = Region::new(Circle::new(centre, r).to_path(1e-4), FillRule::NonZero).unwrap();
+        let clipper = StrokeClipper::new(&disc, TOLERANCE);
+        let lowest = clipper
+            .edges
+            .iter()
+            .map(|e| e.p0)
+            .max_by(|a, b| a.y.total_cmp(&b.y))
+            .unwrap();
+        let bottom = disc.bounds().y1;
+        assert!(lowest.y > bottom, "{lowest:?} {bottom}");
+        let q = Point::new(lowest.x, 0.5 * (lowest.y + bottom));
+        assert!(clipper.contains(q));
+
+        let u = kurbo::Vec2::from_angle(3.7219823555689757);
+        let stroke = Circle::new(centre - u * offset, r + offset + gap).to_path(1e-4);
+        let c = clipper.clip(&stroke);
+        let wrong = wrong_side(&clipper, &c, 1e-9);
+        assert!(wrong.is_empty(), "{wrong:?}");
+    }
+
+    #[test]
+    fn strokes_through_vertices_and_along_edges() {
+        // A diamond: the stroke crosses it exactly at two vertices.
+        let mut d = BezPath::new();
+        d.move_to((0.0, -1.0));
+        d.line_to((1.0, 0.0));
+        d.line_to((0.0, 1.0));
+        d.line_to((-1.0, 0.0));
+        d.close_path();
+        let diamond = Region::new(d, FillRule::NonZero).unwrap();
+        let mut l = BezPath::new();
+        l.move_to((-3.0, 0.0));
+        l.line_to((3.0, 0.0));
+        let c = clip_stroke(&l, &diamond, 0.01);
+        assert_eq!((c.inside.len(), c.outside.len()), (1, 2), "{c:?}");
+        assert!((total(&c.inside) - 2.0).abs() < 1e-12);
+        // A stroke along an edge of a square and past its ends: cut at the
+        // corners, and the part on the edge goes either way.
+        let sq = rect(0.0, 0.0, 10.0, 10.0);
+        let mut along = BezPath::new();
+        along.move_to((-5.0, 0.0));
+        along.line_to((15.0, 0.0));
+        let c = clip_stroke(&along, &sq, 0.01);
+        assert!((total(&c.inside) + total(&c.outside) - 20.0).abs() < 1e-12);
+        assert!(total(&c.outside) >= 10.0 - 1e-12, "{c:?}");
+    }
+
+    /// A stroke piece a few µm long crossing an edge at a shallow angle
+    /// (as pieces already cut by another shape can be) is still cut:
+    /// kurbo's line–line test took lines whose cross product was below
+    /// 1e-9 for parallel.
+    #[test]
+    fn a_tiny_piece_crossing_at_a_shallow_angle_is_cut() {
+        let sq = rect(0.0, 0.0, 1.0, 1.0);
+        let mut l = BezPath::new();
+        l.move_to((0.5 - 1e-6, -1e-10));
+        l.line_to((0.5 + 1e-6, 1e-10));
+        let c = clip_stroke(&l, &sq, 0.01);
+        assert_eq!((c.inside.len(), c.outside.len()), (1, 1), "{c:?}");
+        assert!((total(&c.inside) - 1e-6).abs() < 1e-12);
+    }
+
     fn arb_stroke() -> impl Strategy<Value = BezPath> {
         prop::collection::vec((-10.0..100.0f64, -10.0..100.0f64), 4..13).prop_map(|pts| {
             let mut p = BezPath::new();
@@ -403,6 +891,93 @@ mod tests {
             let sum = total(&c.inside) + total(&c.outside);
             let segments = s.segments().count() as f64;
             prop_assert!((sum - len).abs() <= TOLERANCE * segments, "{sum} vs {len}");
+        }
+
+        /// Every point of every part, not just the middle points the
+        /// pieces were classified by, lies on its side of the flattened
+        /// outline (or on it), also for circles against outlines that
+        /// rounding has tilted (a round trip through a rotation).
+        #[test]
+        fn cuts_are_complete(
+            r in arb_region(),
+            s in arb_stroke(),
+            circles in prop::collection::vec((0.0..60.0f64, 0.0..60.0f64, 1.0..30.0f64), 0..3),
+            angle in -0.5..0.5f64,
+            scale in 0.5..2.0f64,
+        ) {
+            let a = Affine::rotate(angle) * Affine::scale(scale);
+            let r = r.transformed(a).unwrap().transformed(a.inverse()).unwrap();
+            let mut stroke = s;
+            for (x, y, radius) in circles {
+                let c = Circle::new((x, y), radius).to_path(1e-4);
+                stroke.extend(a.inverse() * (a * c));
+            }
+            let clipper = StrokeClipper::new(&r, TOLERANCE);
+            let c = clipper.clip(&stroke);
+            let wrong = wrong_side(&clipper, &c, 1e-7);
+            prop_assert!(wrong.is_empty(), "{wrong:?}");
+            let len = path_length(&stroke);
+            let sum = total(&c.inside) + total(&c.outside);
+            let segments = stroke.segments().count() as f64;
+            // Each length is measured within 1e-3 (`path_length`).
+            let pieces = c.inside.iter().chain(&c.outside).map(|p| p.segments().count()).sum::<usize>();
+            prop_assert!((sum - len).abs() <= 1e-3 * (segments + pieces as f64), "{sum} vs {len}");
+        }
+
+        /// The same near tangencies, where they are likely: a circle
+        /// stroke against a circle or a rectangle that it almost touches
+        /// (internally or externally), at the angles where the circles'
+        /// arcs and flattened edges run parallel (multiples of 22.5°) or
+        /// anywhere, shapes through a rotation round trip as in a
+        /// transformed group.
+        #[test]
+        fn cuts_are_complete_near_tangencies(
+            (cx, cy, r) in (10.0..50.0f64, 10.0..50.0f64, 1.0..25.0f64),
+            direction in prop_oneof![
+                (0u32..16, -1e-3..1e-3f64).prop_map(|(k, e)| k as f64 * std::f64::consts::PI / 8.0 + e),
+                0.0..std::f64::consts::TAU,
+            ],
+            (kind, offset, gap) in (0u32..4, 0.0..6.0f64, -0.6..0.6f64),
+            angle in -0.5..0.5f64,
+            scale in 0.5..2.0f64,
+        ) {
+            let a = Affine::rotate(angle) * Affine::scale(scale);
+            let round_trip = |p: BezPath| a.inverse() * (a * p);
+            let u = kurbo::Vec2::from_angle(direction);
+            let centre = Point::new(cx, cy);
+            let (region, stroke) = match kind {
+                // Around the front circle, touching it inside.
+                0 => (
+                    Circle::new(centre, r).to_path(1e-4),
+                    Circle::new(centre - u * offset, r + offset + gap).to_path(1e-4),
+                ),
+                // Inside it, touching it.
+                1 => (
+                    Circle::new(centre, r + offset).to_path(1e-4),
+                    Circle::new(centre + u * offset, r + gap).to_path(1e-4),
+                ),
+                // Outside it, touching it.
+                2 => (
+                    Circle::new(centre, r).to_path(1e-4),
+                    Circle::new(centre + u * (r + offset + gap), offset + 0.5).to_path(1e-4),
+                ),
+                // A rectangle whose side almost touches the circle.
+                _ => {
+                    let x = cx - r - gap;
+                    (
+                        Rect::new(x, cy - offset - 1.0, x + 1.0 + offset, cy + 30.0).to_path(0.0),
+                        Circle::new(centre, r).to_path(1e-4),
+                    )
+                }
+            };
+            let Ok(region) = Region::new(round_trip(region), FillRule::NonZero) else {
+                return Ok(());
+            };
+            let stroke = round_trip(stroke);
+            let clipper = StrokeClipper::new(&region, TOLERANCE);
+            let c = clipper.clip(&stroke);
+            let wrong = wrong_side(&clipper, &c, 1e-7);
+            prop_assert!(wrong.is_empty(), "{wrong:?}");
         }
 
         #[test]

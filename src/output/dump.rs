@@ -80,6 +80,7 @@ mod tests {
             curl,
             Style {
                 fill: Some(Color::BLACK),
+                ..Style::default()
             },
         );
         trunk.push_group(twig);

@@ -6,6 +6,9 @@
 //! in scene order, each subpath one pen-down stroke. It never reorders or
 //! merges strokes; that is the plot pipeline's job, done before writing.
 //! Curves are flattened to polylines within [`GcodeOptions::tolerance`].
+//! Layers that are not plotted (AxiDraw's `%` documentation layers,
+//! [`Layer::is_plotted`](crate::scene::Layer::is_plotted)) are left out,
+//! and a pen that draws only such layers gets no tool change.
 //!
 //! Shape of the program (with the default options; `;` comments are written
 //! only when [`GcodeOptions::comments`] is on):
@@ -542,14 +545,16 @@ pub(super) struct PenBlock<'a> {
 /// The scene's strokes grouped by pen: pens in ascending number (only those
 /// with at least one stroke), within a pen its layers back to front, within
 /// a layer the paths in scene order, each flattened within `tolerance` mm in
-/// page coordinates. Paths without strokes are left out.
+/// page coordinates. Paths without strokes (and fill-only paths) are left out, and so are layers
+/// that are not plotted ([`Layer::is_plotted`](crate::scene::Layer::is_plotted)).
 pub(super) fn pen_blocks(scene: &Scene, tolerance: f64) -> Vec<PenBlock<'_>> {
     let tolerance = if tolerance.is_finite() {
         tolerance.max(MIN_TOLERANCE)
     } else {
         0.02
     };
-    let layers = scene.layers_back_to_front();
+    let mut layers = scene.layers_back_to_front();
+    layers.retain(|l| l.is_plotted());
     let pens: BTreeSet<u32> = layers.iter().map(|l| l.pen).collect();
     let page = scene.page_transform();
     let mut blocks = Vec::new();
@@ -557,6 +562,9 @@ pub(super) fn pen_blocks(scene: &Scene, tolerance: f64) -> Vec<PenBlock<'_>> {
         let mut paths = Vec::new();
         for layer in layers.iter().filter(|l| l.pen == number) {
             layer.content.visit_paths(page, &mut |p, t| {
+                if p.style.fill_only {
+                    return;
+                }
                 let strokes = flatten_strokes(p.path.iter().map(|el| t * el), tolerance);
                 if !strokes.is_empty() {
                     paths.push(PathStrokes { id: &p.id, strokes });
@@ -720,6 +728,42 @@ pub(super) mod tests {
         }
     }
 
+    /// [`two_pen_scene`] with two layers that are not plotted: `%guides`
+    /// (pen 1, a frame near the sheet's edge, in front of everything) and
+    /// `% 3 notes` (pen 3, which draws nothing else).
+    pub(in crate::output) fn with_unplotted_layers(mut scene: Scene) -> Scene {
+        let mut frame = Group::new("frame");
+        frame.push_path(
+            "frame-outline",
+            Rect::new(-4.0, -4.0, 94.0, 74.0).to_path(0.1),
+            Style::default(),
+        );
+        let mut notes = Group::new("notes");
+        notes.transform = Affine::translate((70.0, 10.0));
+        let mut arrow = BezPath::new();
+        arrow.move_to((0.0, 0.0));
+        arrow.quad_to((7.0, 3.0), (13.0, 17.0));
+        notes.push_path("arrow", arrow, Style::default());
+        let layer = |id: &str, name: &str, pen, depth, content| Layer {
+            id: id.into(),
+            name: name.into(),
+            pen,
+            depth,
+            content,
+        };
+        scene
+            .layers
+            .insert(1, layer("guides", "%guides", 1, -1, frame));
+        scene.layers.push(layer("notes", "% 3 notes", 3, 5, notes));
+        scene.pens.push(Pen {
+            number: 3,
+            name: "pencil".into(),
+            color: Color::rgb(128, 128, 128),
+            width: 0.1,
+        });
+        scene
+    }
+
     /// The `(x, y)` of every `G0`/`G1` line, in order.
     fn moves(gcode: &str) -> Vec<(String, f64, f64)> {
         gcode
@@ -746,6 +790,29 @@ pub(super) mod tests {
         assert_eq!(
             to_gcode(&two_pen_scene(), &o),
             to_gcode(&two_pen_scene().clone(), &o.clone())
+        );
+    }
+
+    #[test]
+    fn unplotted_layers_are_left_out() {
+        let o = GcodeOptions::default();
+        let plain = to_gcode(&two_pen_scene(), &o);
+        let with = to_gcode(&with_unplotted_layers(two_pen_scene()), &o);
+        // Not a move, not a path comment, not a tool change for pen 3.
+        assert_eq!(with, plain);
+        assert!(!with.contains("frame-outline") && !with.contains("pen 3"));
+        // The frame's corners (1, 1) and (99, 79) on the page would be
+        // X1 Y79 and X99 Y1 on the machine.
+        for (_, x, y) in moves(&with) {
+            assert!((6.0..=94.0).contains(&x) || (x, y) == (0.0, 0.0), "{x} {y}");
+        }
+        // A scene of nothing but unplotted layers is an empty program.
+        let mut only = with_unplotted_layers(two_pen_scene());
+        only.layers.retain(|l| !l.is_plotted());
+        let empty = to_gcode(&only, &o);
+        assert!(
+            !empty.contains("M3 S1000") && !empty.contains("M0"),
+            "{empty}"
         );
     }
 

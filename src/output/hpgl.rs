@@ -6,7 +6,10 @@
 //! front, within a layer the paths in scene order, each subpath one pen-down
 //! stroke. It never reorders or merges strokes (the plot pipeline does that
 //! before writing). Curves are flattened to polylines within
-//! [`HpglOptions::tolerance`].
+//! [`HpglOptions::tolerance`]. Layers that are not plotted (AxiDraw's `%`
+//! documentation layers,
+//! [`Layer::is_plotted`](crate::scene::Layer::is_plotted)) are left out, and
+//! a pen that draws only such layers is never selected.
 //!
 //! Shape of the output, one instruction per line:
 //!
@@ -438,7 +441,7 @@ fn knife_offset(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::gcode::tests::two_pen_scene;
+    use crate::output::gcode::tests::{two_pen_scene, with_unplotted_layers};
 
     /// A point in plotter units.
     type Unit = (i64, i64);
@@ -507,6 +510,22 @@ mod tests {
             &HpglOptions::DEFAULT.with_velocity_cm_s(Some(12.5)),
         );
         assert!(v.starts_with("IN;\nPA;\nVS12.5;\nSP1;"));
+    }
+
+    #[test]
+    fn unplotted_layers_are_left_out() {
+        let scene = with_unplotted_layers(two_pen_scene());
+        for options in [HpglOptions::DEFAULT, HpglOptions::CUTTER] {
+            let with = to_hpgl(&scene, &options);
+            assert_eq!(with, to_hpgl(&two_pen_scene(), &options));
+            assert!(!with.contains("SP3;"), "pen 3 draws only notes");
+            // The frame's corners would be at 40 and 3960 units.
+            for (pu, pds) in strokes(&with) {
+                for (x, _) in std::iter::once(pu).chain(pds) {
+                    assert!((200..=3800).contains(&x), "{x}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -20,6 +20,34 @@
 //!   grouped by stroke colour (fill colour when unstroked): one pen per
 //!   colour, numbered in order of first appearance. A pen's colour and width
 //!   are the most common stroke colour and drawn stroke width of its paths.
+//! - **Layer names**, following AxiDraw's layer control:
+//!   - Leading whitespace is ignored. A label whose first character is then
+//!     `%` marks a *documentation layer*: it is imported whole (its
+//!     sub-layers included) as a scene layer named by the trimmed label
+//!     (`"%guides"`, `"% 2 notes"`), which is therefore not plotted
+//!     ([`Layer::is_plotted`]): it survives in SVG output and the preview,
+//!     but G-code, HPGL, the plot stages and the plot statistics leave it
+//!     out. It reads no pen number (`"% 2 notes"` is not pen 2): each such
+//!     layer gets a pen of its own (its colour and width for the preview),
+//!     numbered after every plotted pen, so that adding or removing a `%`
+//!     layer never renumbers the others. This holds when grouping by colour
+//!     too: a documentation layer's paths never join a colour's pen.
+//!   - Otherwise a leading integer 1–999 is the pen number, and the
+//!     separators after it (whitespace, `-`, `_`, `:`) are dropped: `"3
+//!     red"`, `"3-red"`, `"3_red"` and `"3: red"` are all pen 3 named `red`.
+//!     A label that is only a number (`"3"`) names the layer by the whole
+//!     label. When the rest of the label starts with `%` (`"3 %odd"`), the
+//!     layer is plotted (AxiDraw reads the number first) and keeps the
+//!     whole label as its name. A label that starts otherwise (`"red"`,
+//!     `"0 red"`, `"!2 pause"`) has no pen number: the whole label is the
+//!     name, and the pen takes a free number. AxiDraw's other codes (`!`
+//!     pause, `+H`, `+S`, `+D` after the number) are kept in the name and
+//!     not acted upon.
+//!   - Sub-layers are not parsed, as in AxiDraw 3 and later: they belong to
+//!     their top-level layer, so a `%` sub-layer inside a plotted layer is
+//!     plotted with it, and everything inside a `%` layer is not plotted.
+//!   - A hidden layer (`display:none`) is skipped with a warning, `%` or
+//!     not.
 //! - **Paint.** A filled path keeps its fill colour in [`Style::fill`] (the
 //!   region that hatching and occlusion work on); the stroke is implied by
 //!   the pen. Paths with neither fill nor stroke are dropped.
@@ -36,13 +64,17 @@
 //! the same pens (numbers, names, colours, widths), the same paths per pen
 //! in the same order within 1e-3 mm, the fills and the embedded scene
 //! description; the scene layers drawn by one pen come back merged into
-//! one layer, and groups come back flattened.
+//! one layer, and groups come back flattened. A documentation layer comes
+//! back as a layer of its own with the same name (the `%` label), paths,
+//! colour and width; its pen number is not in the SVG, so it is the one
+//! numbered as above.
 //!
 //! Limits: usvg computes in `f32`, so coordinates carry a relative error
 //! of about 1e-7 (0.04 µm on an A3 sheet). Only top-level layers are pens;
-//! sub-layers belong to their top-level layer. [`Style`] has no fill rule,
-//! so a `nonzero` fill whose holes wind the same way as the outline is kept
-//! as drawn but will read as even-odd downstream. Layer visibility set by a
+//! sub-layers belong to their top-level layer. [`Style`] has no fill rule:
+//! fills are non-zero downstream, so an `evenodd` fill is redrawn as the
+//! normalised contours of its area (the same lines; holes wound against
+//! their outline). Layer visibility set by a
 //! CSS stylesheet (rather than `style`/`display` on the layer) hides the
 //! layer without the "hidden" wording in its warning.
 
@@ -54,6 +86,7 @@ use serde::{Deserialize, Serialize};
 
 use super::embedded_description;
 use crate::error::{Error, LineCol, Result};
+use crate::geom::region::{FillRule, Region};
 use crate::scene::{Color, Group, Layer, Pen, Scene, Style};
 use crate::spec::MAX_COORD;
 use crate::units::{Margins, Page, MM_PER_INCH};
@@ -259,7 +292,7 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
         PenGrouping::Auto if !source.layers.is_empty() => {
             (by_layer(&source.layers, &collector, &mut warnings), true)
         }
-        _ => (by_color(&collector.drawn), false),
+        _ => (by_color(&collector.drawn, &source.layers), false),
     };
     let scene = assemble(
         page,
@@ -340,6 +373,8 @@ struct LayerSource {
     label: String,
     /// `display="none"` or `style="display:none"`: usvg drops it.
     hidden: bool,
+    /// False for a documentation layer (`%` label): see [`Layer::is_plotted`].
+    plotted: bool,
 }
 
 /// What the pre-pass over the raw XML learns: what usvg drops or cannot
@@ -436,7 +471,13 @@ fn scan(text: &str, doc: &roxmltree::Document<'_>) -> Result<Source> {
                 id
             }
         };
-        layers.push(LayerSource { id, label, hidden });
+        let plotted = Layer::name_is_plotted(&label);
+        layers.push(LayerSource {
+            id,
+            label,
+            hidden,
+            plotted,
+        });
     }
 
     let rewritten = (!edits.is_empty()).then(|| {
@@ -744,6 +785,21 @@ impl Collector<'_> {
             let width = round_size(f64::from(s.width().get()) * scale);
             (paint_color(s.paint()), width)
         });
+        // Downstream, fills are non-zero (like an SVG without fill-rule).
+        // An even-odd fill is redrawn as the same area's normalised
+        // contours (holes wound against their outline): every edge of an
+        // even-odd fill bounds it, so the lines drawn stay the same.
+        let even_odd = p
+            .fill()
+            .is_some_and(|f| f.rule() == usvg::FillRule::EvenOdd);
+        let path = if even_odd {
+            match Region::new(path.clone(), FillRule::EvenOdd) {
+                Ok(r) if !r.is_empty() => r.into_path(),
+                _ => path,
+            }
+        } else {
+            path
+        };
         self.drawn.push(Drawn {
             layer,
             id: p.id().to_string(),
@@ -831,6 +887,42 @@ struct Bucket {
     pen_name: String,
     layer_name: String,
     members: Vec<usize>,
+    /// False for a documentation layer (its `layer_name` starts with `%`).
+    plotted: bool,
+}
+
+impl Bucket {
+    /// A bucket for a documentation layer labelled `label`; its pen is
+    /// numbered later, after every plotted pen ([`number_unplotted`]).
+    fn unplotted(label: &str) -> Bucket {
+        let name = label.trim().to_string();
+        Bucket {
+            pen: 0,
+            pen_name: name.clone(),
+            layer_name: name,
+            members: Vec::new(),
+            plotted: false,
+        }
+    }
+}
+
+/// Gives each documentation layer's bucket a pen of its own: the smallest
+/// numbers no other bucket uses, in document order. They come after all the
+/// plotted pens are numbered, so a `%` layer never changes the numbering of
+/// the layers that are plotted.
+fn number_unplotted(buckets: &mut [Bucket]) {
+    let mut taken: HashSet<u32> = buckets
+        .iter()
+        .filter(|b| b.plotted)
+        .map(|b| b.pen)
+        .collect();
+    for bucket in buckets.iter_mut().filter(|b| !b.plotted) {
+        let n = (1..)
+            .find(|n| !taken.contains(n))
+            .expect("some number is free");
+        taken.insert(n);
+        bucket.pen = n;
+    }
 }
 
 /// One bucket per found top-level layer (in document order), plus one for
@@ -840,7 +932,17 @@ fn by_layer(
     collector: &Collector<'_>,
     warnings: &mut Vec<String>,
 ) -> Vec<Bucket> {
-    let labels: Vec<(Option<u32>, String)> = layers.iter().map(|l| split_label(&l.label)).collect();
+    // Documentation layers claim no pen number: "% 2 notes" is not pen 2.
+    let labels: Vec<(Option<u32>, String)> = layers
+        .iter()
+        .map(|l| {
+            if l.plotted {
+                split_label(&l.label)
+            } else {
+                (None, String::new())
+            }
+        })
+        .collect();
     let mut taken: HashSet<u32> = labels.iter().filter_map(|(n, _)| *n).collect();
     let mut next_free = || {
         let n = (1..)
@@ -861,18 +963,26 @@ fn by_layer(
             warnings.push(format!("skipped layer '{}': {why}", layer.label));
             continue;
         }
+        index_of[i] = Some(buckets.len());
+        if !layer.plotted {
+            buckets.push(Bucket::unplotted(&layer.label));
+            continue;
+        }
         let pen = number.unwrap_or_else(&mut next_free);
-        let layer_name = if name.is_empty() {
+        // The layer keeps the whole label when the rest alone would be no
+        // name, or would read as a documentation layer ("3 %odd" is
+        // plotted, with pen 3).
+        let layer_name = if name.is_empty() || !Layer::name_is_plotted(&name) {
             layer.label.clone()
         } else {
             name.clone()
         };
-        index_of[i] = Some(buckets.len());
         buckets.push(Bucket {
             pen,
             pen_name: name,
             layer_name,
             members: Vec::new(),
+            plotted: true,
         });
     }
     let mut outside = Vec::new();
@@ -894,13 +1004,18 @@ fn by_layer(
             pen_name: "unlayered".into(),
             layer_name: "unlayered".into(),
             members: outside,
+            plotted: true,
         });
     }
+    number_unplotted(&mut buckets);
     buckets
 }
 
 /// Splits `"3 blue"` into pen 3 and `blue`; a label without a leading pen
-/// number (1–999) is all name.
+/// number (1–999) is all name. Whitespace before the number and
+/// separators after it (whitespace, `-`, `_`, `:`) are dropped, so
+/// `"3-blue"`, `"3_blue"`, `"3: blue"` and `" 3 blue"` are all pen 3 named
+/// `blue`.
 fn split_label(label: &str) -> (Option<u32>, String) {
     let label = label.trim();
     let digits = label.len() - label.trim_start_matches(|c: char| c.is_ascii_digit()).len();
@@ -915,25 +1030,39 @@ fn split_label(label: &str) -> (Option<u32>, String) {
 }
 
 /// One bucket per colour (stroke, else fill), pens numbered in order of
-/// first appearance.
-fn by_color(drawn: &[Drawn]) -> Vec<Bucket> {
+/// first appearance; the paths of each documentation layer (`%` label)
+/// stay apart, in a bucket of their own after the colours.
+fn by_color(drawn: &[Drawn], layers: &[LayerSource]) -> Vec<Bucket> {
     let mut buckets: Vec<Bucket> = Vec::new();
     let mut index: HashMap<u32, usize> = HashMap::new();
+    // Documentation layer (index into `layers`) → its paths.
+    let mut unplotted: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
     for (k, d) in drawn.iter().enumerate() {
         let Some(color) = d.stroke.map(|(c, _)| c).or(d.fill) else {
             continue;
         };
+        if let Some(i) = d.layer.filter(|&i| !layers[i].plotted) {
+            unplotted.entry(i).or_default().push(k);
+            continue;
+        }
         let i = *index.entry(color_key(color)).or_insert_with(|| {
             buckets.push(Bucket {
                 pen: buckets.len() as u32 + 1,
                 pen_name: color.to_string(),
                 layer_name: color.to_string(),
                 members: Vec::new(),
+                plotted: true,
             });
             buckets.len() - 1
         });
         buckets[i].members.push(k);
     }
+    for (i, members) in unplotted {
+        let mut bucket = Bucket::unplotted(&layers[i].label);
+        bucket.members = members;
+        buckets.push(bucket);
+    }
+    number_unplotted(&mut buckets);
     buckets
 }
 
@@ -1043,7 +1172,14 @@ fn assemble(
                 } else {
                     d.id
                 };
-                content.push_path(ids.unique(&wanted), d.path, Style { fill: d.fill });
+                content.push_path(
+                    ids.unique(&wanted),
+                    d.path,
+                    Style {
+                        fill: d.fill,
+                        ..Style::default()
+                    },
+                );
             }
             Layer {
                 id,
@@ -1396,6 +1532,23 @@ mod tests {
     }
 
     #[test]
+    fn even_odd_ring_wound_one_way_keeps_its_hole() {
+        // Both contours clockwise: solid under non-zero, a ring under
+        // even-odd (as the file says).
+        let imported = import(&doc(r##"<path fill-rule="evenodd" fill="#336699"
+                d="M0 0 H40 V40 H0 Z M10 10 H30 V10 H30 V30 H10 Z"/>"##));
+        let all = paths(&imported.scene);
+        assert_eq!(all.len(), 1);
+        let region = Region::new(all[0].1.clone(), FillRule::NonZero).unwrap();
+        assert!(
+            (region.area() - (1600.0 - 400.0)).abs() < 1e-3,
+            "{}",
+            region.area()
+        );
+        assert!(!region.contains((20.0, 20.0).into()));
+    }
+
+    #[test]
     fn inkscape_file_with_sublayer_hidden_layer_and_text() {
         let imported = import(include_str!(
             "../../tests/fixtures/import/inkscape_layers.svg"
@@ -1433,6 +1586,195 @@ mod tests {
                 "skipped layer '3 guides': it is hidden",
             ]
         );
+    }
+
+    #[test]
+    fn axidraw_documentation_layers_are_imported_but_not_plotted() {
+        let imported = import(include_str!(
+            "../../tests/fixtures/import/axidraw_layers.svg"
+        ));
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let scene = &imported.scene;
+        let pens: Vec<(u32, &str, String, f64)> = scene
+            .pens
+            .iter()
+            .map(|p| (p.number, p.name.as_str(), p.color.to_string(), p.width))
+            .collect();
+        // The documentation layers' pens come after the plotted ones.
+        assert_eq!(
+            pens,
+            [
+                (1, "black", "#000000".to_string(), 0.3),
+                (2, "red", "#ff0000".to_string(), 0.5),
+                (3, "%guides", "#00aaff".to_string(), 0.2),
+                (4, "% 2 notes", "#888888".to_string(), 0.1),
+            ]
+        );
+        let layers: Vec<(&str, u32, i32, bool, usize)> = scene
+            .layers
+            .iter()
+            .map(|l| {
+                let n = l.content.children.len();
+                (l.name.as_str(), l.pen, l.depth, l.is_plotted(), n)
+            })
+            .collect();
+        assert_eq!(
+            layers,
+            [
+                ("%guides", 3, 3, false, 2),
+                ("black", 1, 2, true, 3),
+                ("red", 2, 1, true, 1),
+                ("% 2 notes", 4, 0, false, 1),
+            ]
+        );
+        // The "%" sub-layer's path belongs to pen 1 and is plotted; the
+        // frame keeps its fill.
+        assert_eq!(scene.pen_stats(1).paths, 3);
+        let all = paths(scene);
+        assert_eq!(all[0].2.fill, Some(Color::rgb(0xe8, 0xf4, 0xff)));
+        assert!((path_length(&all[0].1) - 560.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn layer_labels_follow_axidraw() {
+        let layer = |label: &str, y: f64| {
+            format!(
+                r#"<g inkscape:groupmode="layer" inkscape:label="{label}" stroke="black">
+                   <path d="M0 {y} L10 {y}"/></g>"#
+            )
+        };
+        let labels = [
+            "%notes",
+            "3 red",
+            "% 2 guides",
+            "7-green",
+            "Outline",
+            "5 %odd",
+            "  %  spaced",
+            "0 zero",
+            "!2 pause",
+            "9",
+        ];
+        let body: String = labels
+            .iter()
+            .enumerate()
+            .map(|(i, l)| layer(l, i as f64))
+            .collect();
+        let imported = import(&doc(&body));
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let got: Vec<(&str, u32, &str, bool)> = imported
+            .scene
+            .layers
+            .iter()
+            .map(|l| {
+                let pen = imported.scene.pen(l.pen).unwrap();
+                (l.name.as_str(), l.pen, pen.name.as_str(), l.is_plotted())
+            })
+            .collect();
+        // Numbered: 3, 7, 5, 9. Free numbers in document order: plotted
+        // layers first (1, 2, 4), then the documentation layers (6, 8, 10).
+        assert_eq!(
+            got,
+            [
+                ("%notes", 6, "%notes", false),
+                ("red", 3, "red", true),
+                ("% 2 guides", 8, "% 2 guides", false),
+                ("green", 7, "green", true),
+                ("Outline", 1, "Outline", true),
+                ("5 %odd", 5, "%odd", true),
+                ("%  spaced", 10, "%  spaced", false),
+                ("0 zero", 2, "0 zero", true),
+                ("!2 pause", 4, "!2 pause", true),
+                ("9", 9, "", true),
+            ]
+        );
+
+        // Grouping by colour still keeps each documentation layer apart.
+        let by_color = import_svg(
+            &doc(&body),
+            &ImportOptions::DEFAULT.with_pens(PenGrouping::StrokeColor),
+        )
+        .unwrap();
+        let got: Vec<(&str, u32, bool, usize)> = by_color
+            .scene
+            .layers
+            .iter()
+            .map(|l| {
+                let n = l.content.children.len();
+                (l.name.as_str(), l.pen, l.is_plotted(), n)
+            })
+            .collect();
+        assert_eq!(
+            got,
+            [
+                ("#000000", 1, true, 7),
+                ("%notes", 2, false, 1),
+                ("% 2 guides", 3, false, 1),
+                ("%  spaced", 4, false, 1),
+            ]
+        );
+    }
+
+    #[test]
+    fn documentation_layers_round_trip_through_the_writer() {
+        let mut original = sample_scene();
+        let mut guides = Group::new("guides");
+        guides.push_path(
+            "frame",
+            Rect::new(-5.0, -5.0, 100.0, 150.0).into_path(0.1),
+            Style::default(),
+        );
+        original.layers.insert(
+            1,
+            Layer {
+                id: "guides-layer".into(),
+                name: "%guides & notes".into(),
+                pen: 1,
+                depth: 9,
+                content: guides,
+            },
+        );
+        let svg = to_svg(&original, &SvgOptions::DEFAULT);
+        assert!(
+            svg.contains("inkscape:label=\"%guides &amp; notes\""),
+            "{svg}"
+        );
+        let imported = import(&svg);
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let scene = &imported.scene;
+        // The plotted pens (1 and 7) are as before; the guides get a pen of
+        // their own, the smallest free number, with pen 1's colour and width.
+        assert_eq!(
+            [scene.pens[0].clone(), scene.pens[2].clone()],
+            original.pens[..]
+        );
+        let pen = &scene.pens[1];
+        assert_eq!(
+            (pen.number, pen.name.as_str(), pen.color, pen.width),
+            (2, "%guides & notes", Color::BLACK, 0.3)
+        );
+        let guides = &scene.layers[0];
+        assert_eq!(
+            (guides.name.as_str(), guides.pen, guides.is_plotted()),
+            ("%guides & notes", 2, false)
+        );
+        let frame = &paths(scene)[0].1;
+        assert_rect_near(
+            frame.bounding_box(),
+            Rect::new(5.0, 5.0, 110.0, 160.0),
+            1e-4,
+        );
+        // Plotted paths are unchanged by the documentation layer.
+        assert_eq!(
+            scene.path_count() - 1,
+            import(&to_svg(&sample_scene(), &SvgOptions::DEFAULT))
+                .scene
+                .path_count()
+        );
+        // And once more: the label survives a second round.
+        let again = to_svg(scene, &SvgOptions::DEFAULT);
+        assert!(again.contains("inkscape:label=\"%guides &amp; notes\""));
+        assert!(!import(&again).scene.layers[0].is_plotted());
     }
 
     #[test]
@@ -1655,6 +1997,7 @@ mod tests {
             leaf,
             Style {
                 fill: Some(Color::rgb(0xdc, 0x14, 0x3c)),
+                ..Style::default()
             },
         );
         front.push_group(flower);
@@ -1673,6 +2016,7 @@ mod tests {
             },
             Style {
                 fill: Some(Color::rgb(1, 2, 3)),
+                ..Style::default()
             },
         );
         let mut sky = Group::new("sky");

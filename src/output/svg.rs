@@ -11,15 +11,32 @@
 //! <?xml …?>
 //! <svg … width="210mm" height="297mm" viewBox="0 0 210 297">   one user unit = 1 mm
 //!  <metadata><moyo:scene …><![CDATA[scene description]]></moyo:scene></metadata>
+//!  <g id="{layer id}" inkscape:groupmode="layer" inkscape:label="%guides"   a layer that
+//!     style="stroke…" transform="translate({margin left} {margin top})">   is not plotted
+//!   <g id="{group id}"> …
 //!  <g id="pen-1" inkscape:groupmode="layer" inkscape:label="1 black" style="stroke…">
 //!   <g id="{layer id}" transform="translate({margin left} {margin top})">
 //!    <g id="{group id}">                    transform="matrix(…)" when not identity
 //!     <path id="{path id}" d="M … L … Q … C … Z"/>
 //! ```
 //!
-//! Pens come in ascending number, and only pens that draw at least one layer
-//! get an Inkscape layer; within a pen, scene layers are written back to
-//! front. Stroke colour and width live on the pen's layer; a path carries a
+//! # Layer names (AxiDraw's conventions)
+//!
+//! Each pen's Inkscape layer is labelled with the pen number first, then
+//! the pen's name (`1 black`): AxiDraw and vpype read the leading integer as
+//! the layer number. Pens come in ascending number, and only pens that draw
+//! at least one plotted layer get an Inkscape layer; within a pen, scene
+//! layers are written back to front.
+//!
+//! A scene layer that is not plotted (a *documentation layer*, whose name
+//! starts with `%`: [`Layer::is_plotted`]) is not merged into its pen's
+//! layer: it becomes an Inkscape layer of its own, labelled with the
+//! layer's name exactly as it is (`%guides`, no pen number), which AxiDraw
+//! skips when plotting while Inkscape, vpype and the PNG preview show it.
+//! These layers come first, back to front, so that they paint behind the
+//! drawing; each takes its stroke colour and width from its pen.
+//!
+//! Stroke colour and width live on the Inkscape layer; a path carries a
 //! `style` only when it has a fill.
 
 use std::collections::BTreeSet;
@@ -27,7 +44,7 @@ use std::collections::BTreeSet;
 use kurbo::{Affine, BezPath, PathEl, Point};
 
 use super::number::{write_number, MAX_PRECISION};
-use crate::scene::{Color, Group, Node, Pen, Scene, StyledPath};
+use crate::scene::{Color, Group, Layer, Node, Pen, Scene, StyledPath};
 
 /// Opening of the embedded scene description, up to the first CDATA section.
 const SCENE_OPEN: &str = "<moyo:scene xmlns:moyo=\"https://moyo.invalid/scene\" format=\"toml\">";
@@ -165,33 +182,47 @@ impl Writer {
         }
 
         let back_to_front = scene.layers_back_to_front();
-        // BTreeSet: ascending pen numbers, each once.
-        let pens: BTreeSet<u32> = back_to_front.iter().map(|l| l.pen).collect();
+        let (plotted, unplotted): (Vec<&Layer>, Vec<&Layer>) =
+            back_to_front.into_iter().partition(|l| l.is_plotted());
         let page_transform = scene.page_transform().translation();
+        let translate = |w: &mut Writer| {
+            w.out.push_str(" transform=\"translate(");
+            w.exact(page_transform.x);
+            w.out.push(' ');
+            w.exact(page_transform.y);
+            w.out.push_str(")\"");
+        };
+
+        // Documentation layers: one Inkscape layer each, behind the pens.
+        for layer in unplotted {
+            let pen = pen_or_fallback(scene, layer.pen);
+            self.indent(1);
+            self.out.push_str("<g id=\"");
+            escape_into(&mut self.out, &layer.id);
+            self.out
+                .push_str("\" inkscape:groupmode=\"layer\" inkscape:label=\"");
+            escape_into(&mut self.out, &layer.name);
+            self.out.push('"');
+            self.stroke_style(&pen);
+            translate(self);
+            self.out.push_str(">\n");
+            self.group(&layer.content, 2);
+            self.indent(1);
+            self.out.push_str("</g>\n");
+        }
+
+        // BTreeSet: ascending pen numbers, each once.
+        let pens: BTreeSet<u32> = plotted.iter().map(|l| l.pen).collect();
         for number in pens {
-            let fallback;
-            let pen = match scene.pen(number) {
-                Some(pen) => pen,
-                None => {
-                    fallback = Pen {
-                        number,
-                        name: String::new(),
-                        color: Color::BLACK,
-                        width: FALLBACK_PEN_WIDTH,
-                    };
-                    &fallback
-                }
-            };
-            self.pen_open(pen);
-            for layer in back_to_front.iter().filter(|l| l.pen == number) {
+            let pen = pen_or_fallback(scene, number);
+            self.pen_open(&pen);
+            for layer in plotted.iter().filter(|l| l.pen == number) {
                 self.indent(2);
                 self.out.push_str("<g id=\"");
                 escape_into(&mut self.out, &layer.id);
-                self.out.push_str("\" transform=\"translate(");
-                self.exact(page_transform.x);
-                self.out.push(' ');
-                self.exact(page_transform.y);
-                self.out.push_str(")\">\n");
+                self.out.push('"');
+                translate(self);
+                self.out.push_str(">\n");
                 self.group(&layer.content, 3);
                 self.indent(2);
                 self.out.push_str("</g>\n");
@@ -215,12 +246,19 @@ impl Writer {
             self.out.push(' ');
             escape_into(&mut self.out, &pen.name);
         }
-        self.out.push_str("\" style=\"fill:none;stroke:");
+        self.out.push('"');
+        self.stroke_style(pen);
+        self.out.push_str(">\n");
+    }
+
+    /// ` style="…"` with the pen's stroke colour and width.
+    fn stroke_style(&mut self, pen: &Pen) {
+        self.out.push_str(" style=\"fill:none;stroke:");
         self.out.push_str(&pen.color.to_string());
         self.out.push_str(";stroke-width:");
         self.exact(pen.width);
         self.out
-            .push_str(";stroke-linecap:round;stroke-linejoin:round\">\n");
+            .push_str(";stroke-linecap:round;stroke-linejoin:round\"");
     }
 
     fn group(&mut self, group: &Group, depth: usize) {
@@ -257,6 +295,9 @@ impl Writer {
         if let Some(fill) = path.style.fill {
             self.out.push_str(" style=\"fill:");
             self.out.push_str(&fill.to_string());
+            if path.style.fill_only {
+                self.out.push_str(";stroke:none");
+            }
             self.out.push('"');
         }
         self.out.push_str(" d=\"");
@@ -274,6 +315,17 @@ impl Writer {
             self.out.push(' ');
         }
     }
+}
+
+/// Pen `number` of the scene, or a black fine liner of that number when the
+/// scene's pen list lacks it.
+fn pen_or_fallback(scene: &Scene, number: u32) -> Pen {
+    scene.pen(number).cloned().unwrap_or_else(|| Pen {
+        number,
+        name: String::new(),
+        color: Color::BLACK,
+        width: FALLBACK_PEN_WIDTH,
+    })
 }
 
 /// Appends `text` as CDATA. A CDATA section ends at the first "]]>", so that
@@ -347,6 +399,7 @@ mod tests {
             leaf,
             Style {
                 fill: Some(Color::rgb(0xdc, 0x14, 0x3c)),
+                ..Style::default()
             },
         );
         front.push_group(flower);
@@ -436,6 +489,68 @@ mod tests {
         let pen2 = svg.find("id=\"pen-2\"").unwrap();
         assert!(back < front && front < pen2);
         assert!(svg.contains("stroke:#ff0000;stroke-width:0.25;"));
+    }
+
+    #[test]
+    fn unplotted_layers_are_inkscape_layers_of_their_own() {
+        let mut scene = two_pen_scene();
+        let mut guides = Group::new("guides");
+        guides.push_path(
+            "frame",
+            Rect::new(-5.0, -5.0, 123.0, 185.0).into_path(0.1),
+            Style::default(),
+        );
+        let mut notes = Group::new("notes");
+        notes.push_path(
+            "arrow",
+            Line::new((50.0, 50.0), (60.0, 55.0)).into_path(0.1),
+            Style::default(),
+        );
+        let mut g = layer("guides-layer", 3, 7, guides);
+        g.name = "%guides".into();
+        let mut n = layer("notes-layer", 1, 0, notes);
+        n.name = "% 1 notes <b>".into();
+        scene.layers.insert(0, n);
+        scene.layers.push(g);
+        let svg = to_svg(&scene, &SvgOptions::DEFAULT);
+        let labels: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.contains("inkscape:groupmode=\"layer\""))
+            .map(|l| {
+                let start = l.find("inkscape:label=\"").unwrap() + "inkscape:label=\"".len();
+                &l[start..start + l[start..].find('"').unwrap()]
+            })
+            .collect();
+        // Unplotted first, back to front, labelled by their names alone;
+        // pen 3 draws nothing plotted, so it gets no pen layer.
+        assert_eq!(
+            labels,
+            [
+                "%guides",
+                "% 1 notes &lt;b&gt;",
+                "1 black",
+                "2 red &amp; &quot;fine&quot;"
+            ]
+        );
+        assert!(!svg.contains("id=\"pen-3\""));
+        assert!(svg.contains(
+            "<g id=\"guides-layer\" inkscape:groupmode=\"layer\" inkscape:label=\"%guides\" \
+             style=\"fill:none;stroke:#0000ff;stroke-width:0.5;stroke-linecap:round;\
+             stroke-linejoin:round\" transform=\"translate(10 10)\">\n  <g id=\"guides\">\n   \
+             <path id=\"frame\" d=\"M -5 -5 L 123 -5 L 123 185 L -5 185 Z\"/>"
+        ));
+        // The notes are not in pen 1's layer.
+        let pen1 = svg.find("id=\"pen-1\"").unwrap();
+        assert!(svg.find("id=\"arrow\"").unwrap() < pen1);
+        // The preview draws them: the frame reaches the sheet's corner.
+        let tree = parse(&svg);
+        let frame = tree.node_by_id("frame").expect("the frame is drawn");
+        let b = frame.abs_stroke_bounding_box();
+        assert!(b.left() < 5.0 * 96.0 / 25.4 + 1.0, "{b:?}");
+        // The plotted layers are written exactly as without the others.
+        let plain = to_svg(&two_pen_scene(), &SvgOptions::DEFAULT);
+        let from = |s: &str| s[s.find("<g id=\"pen-1\"").unwrap()..].to_string();
+        assert_eq!(from(&svg), from(&plain));
     }
 
     #[test]

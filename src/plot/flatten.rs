@@ -31,6 +31,29 @@
 //! (applying its group transforms, in the layer's own coordinates), so the
 //! stages also do something sensible on a scene that did not go through
 //! [`by_pen`] — but distances are then measured in each layer's coordinates.
+//!
+//! # Layers that are not plotted
+//!
+//! A documentation layer (AxiDraw's `%` layers, [`Layer::is_plotted`]
+//! false) is reference material, not drawing, and the plot stages leave it
+//! as it is:
+//!
+//! - [`by_pen`] does not merge it into its pen's layer. It stays a layer of
+//!   its own, with its id, name, pen, groups and paths unchanged; only the
+//!   margin translation is composed into its content group's transform (the
+//!   flat scene has zero margins), so it stays where it was on the sheet.
+//!   These layers come first in the flat scene, back to front, before the
+//!   pens' layers — the order of the SVG writer, which paints them behind
+//!   the drawing.
+//! - [`take_paths`] gives no paths for it and leaves its content in place,
+//!   and [`set_paths`] with no paths leaves it alone, so the per-pen stages
+//!   ([`super::merge`], [`super::simplify`], [`super::sort`],
+//!   [`super::multipass`]) pass it through untouched.
+//! - [`take_unplotted`] and [`restore_unplotted`] set such layers aside
+//!   around stages that walk the layers themselves (hatching, hidden-line
+//!   removal): set aside, they are neither hatched, nor hidden, nor hide.
+//!
+//! The G-code and HPGL writers and [`super::stats()`] skip or flag them.
 
 use std::collections::BTreeSet;
 
@@ -40,37 +63,54 @@ use crate::scene::{Group, Layer, Node, Scene, StyledPath};
 use crate::units::Margins;
 
 /// One layer per pen, with every path in page coordinates (see the module
-/// documentation). The result has the page size of `scene`, zero margins,
-/// the same pens and description.
+/// documentation), preceded by the layers that are not plotted, kept as
+/// they are. The result has the page size of `scene`, zero margins, the
+/// same pens and description.
 pub fn by_pen(scene: &Scene) -> Scene {
     let page_transform = scene.page_transform();
     let back_to_front = scene.layers_back_to_front();
-    // BTreeSet: ascending pen numbers, each once.
-    let pens: BTreeSet<u32> = back_to_front.iter().map(|l| l.pen).collect();
-    let layers = pens
-        .into_iter()
-        .map(|number| {
-            let mut content = Group::new(format!("pen-{number}.paths"));
-            for layer in back_to_front.iter().filter(|l| l.pen == number) {
-                layer.content.visit_paths(page_transform, &mut |p, t| {
-                    content.children.push(Node::Path(StyledPath {
-                        id: p.id.clone(),
-                        path: transformed(&p.path, t),
-                        style: p.style.clone(),
-                    }));
-                });
-            }
-            Layer {
-                id: format!("pen-{number}.layer"),
-                name: scene
-                    .pen(number)
-                    .map_or_else(String::new, |p| p.name.clone()),
-                pen: number,
-                depth: 0,
-                content,
-            }
+    let mut layers: Vec<Layer> = back_to_front
+        .iter()
+        .filter(|l| !l.is_plotted())
+        .map(|&l| {
+            let mut layer = l.clone();
+            layer.depth = 0;
+            layer.content.transform = page_transform * layer.content.transform;
+            layer
         })
         .collect();
+    // BTreeSet: ascending pen numbers, each once.
+    let pens: BTreeSet<u32> = back_to_front
+        .iter()
+        .filter(|l| l.is_plotted())
+        .map(|l| l.pen)
+        .collect();
+    layers.extend(pens.into_iter().map(|number| {
+        let mut content = Group::new(format!("pen-{number}.paths"));
+        for layer in back_to_front
+            .iter()
+            .filter(|l| l.pen == number && l.is_plotted())
+        {
+            layer.content.visit_paths(page_transform, &mut |p, t| {
+                // A fill without a stroke is preview colour: nothing to plot.
+                if p.style.fill_only {
+                    return;
+                }
+                content.children.push(Node::Path(StyledPath {
+                    id: p.id.clone(),
+                    path: transformed(&p.path, t),
+                    style: p.style.clone(),
+                }));
+            });
+        }
+        Layer {
+            id: format!("pen-{number}.layer"),
+            name: plotted_layer_name(number, scene.pen(number).map_or("", |p| &p.name)),
+            pen: number,
+            depth: 0,
+            content,
+        }
+    }));
     let mut page = scene.page;
     page.margins = Margins::default();
     Scene {
@@ -78,6 +118,48 @@ pub fn by_pen(scene: &Scene) -> Scene {
         pens: scene.pens.clone(),
         layers,
         description: scene.description.clone(),
+    }
+}
+
+/// The name of pen `number`'s flat layer: the pen's name, unless that name
+/// would read as a layer that is not plotted (`%…`); then the pen number
+/// comes first, as in the SVG layer label (`"2 %red"`).
+fn plotted_layer_name(number: u32, pen_name: &str) -> String {
+    if Layer::name_is_plotted(pen_name) {
+        pen_name.to_string()
+    } else {
+        format!("{number} {pen_name}")
+    }
+}
+
+/// Takes the layers that are not plotted ([`Layer::is_plotted`] false) out
+/// of `scene`, with their positions in [`Scene::layers`], so that a stage
+/// that walks every layer (hatching, hidden-line removal) neither changes
+/// them nor lets them change the rest. Give them back with
+/// [`restore_unplotted`].
+pub fn take_unplotted(scene: &mut Scene) -> Vec<(usize, Layer)> {
+    let mut taken = Vec::new();
+    let mut kept = Vec::with_capacity(scene.layers.len());
+    for (i, layer) in std::mem::take(&mut scene.layers).into_iter().enumerate() {
+        if layer.is_plotted() {
+            kept.push(layer);
+        } else {
+            taken.push((i, layer));
+        }
+    }
+    scene.layers = kept;
+    taken
+}
+
+/// Puts back the layers taken by [`take_unplotted`] at their old positions
+/// (or at the end, when the scene has fewer layers than it had).
+pub fn restore_unplotted(scene: &mut Scene, mut taken: Vec<(usize, Layer)>) {
+    // In ascending positions, each insertion finds the ones before it in
+    // place.
+    taken.sort_by_key(|(i, _)| *i);
+    for (i, layer) in taken {
+        let at = i.min(scene.layers.len());
+        scene.layers.insert(at, layer);
     }
 }
 
@@ -94,8 +176,13 @@ pub fn is_flat(layer: &Layer) -> bool {
 
 /// Takes the paths out of `layer`, leaving its content empty. A flat layer
 /// gives its paths as they are; any other layer is flattened first (group
-/// transforms applied, coordinates in the layer's own frame).
+/// transforms applied, coordinates in the layer's own frame). A layer that
+/// is not plotted ([`Layer::is_plotted`] false) gives no paths and keeps
+/// its content, so that a stage passes it through unchanged.
 pub fn take_paths(layer: &mut Layer) -> Vec<StyledPath> {
+    if !layer.is_plotted() {
+        return Vec::new();
+    }
     if is_flat(layer) {
         return std::mem::take(&mut layer.content.children)
             .into_iter()
@@ -118,8 +205,13 @@ pub fn take_paths(layer: &mut Layer) -> Vec<StyledPath> {
 }
 
 /// Makes `paths` the content of `layer`: a flat group (the content keeps
-/// its id; its transform becomes the identity).
+/// its id; its transform becomes the identity). On a layer that is not
+/// plotted, no paths leave the content as it is (the other half of
+/// [`take_paths`]' pass-through); paths replace it as on any layer.
 pub fn set_paths(layer: &mut Layer, paths: Vec<StyledPath>) {
+    if paths.is_empty() && !layer.is_plotted() {
+        return;
+    }
     layer.content.transform = Affine::IDENTITY;
     layer.content.children = paths.into_iter().map(Node::Path).collect();
 }
@@ -477,6 +569,162 @@ mod tests {
         let split = split_subpaths(paths);
         let got: Vec<&str> = split.iter().map(|p| p.id.as_str()).collect();
         assert_eq!(got, ["a", "a.1", "b"]);
+    }
+
+    /// The test scene with two layers that are not plotted: `%guides` (pen
+    /// 1, nested, at the back) and `% notes` (pen 3, which nothing else
+    /// uses), between the others in the list.
+    fn scene_with_unplotted() -> Scene {
+        let mut s = test_scene();
+        let mut guides = Group::new("guides");
+        let mut frame = Group::new("frame");
+        frame.transform = Affine::scale(2.0);
+        frame.push_path(
+            "g1",
+            kurbo::Rect::new(0.0, 0.0, 50.0, 50.0).into_path(0.1),
+            Style {
+                fill: Some(Color::rgb(200, 200, 200)),
+                ..Style::default()
+            },
+        );
+        guides.push_group(frame);
+        guides.push_path("g2", line((0.0, 0.0), (1.0, 0.0)), Style::default());
+        guides.push_path("g3", line((1.0, 0.0), (2.0, 0.0)), Style::default());
+        let mut notes = Group::new("notes");
+        notes.push_path("n1", line((5.0, 5.0), (6.0, 6.0)), Style::default());
+        let mut g = layer("guides", 1, 9, guides);
+        g.name = "%guides".into();
+        let mut n = layer("notes", 3, 0, notes);
+        n.name = "  % notes".into();
+        s.layers.insert(1, g);
+        s.layers.push(n);
+        s.pens.push(pen(3, "grey"));
+        s
+    }
+
+    #[test]
+    fn unplotted_names_follow_axidraw() {
+        for (name, plotted) in [
+            ("%guides", false),
+            ("  % 2 notes", false),
+            ("%", false),
+            ("1 black", true),
+            ("guides %", true),
+            ("", true),
+            ("!%pause", true),
+        ] {
+            assert_eq!(Layer::name_is_plotted(name), plotted, "{name:?}");
+        }
+        let s = scene_with_unplotted();
+        let plotted: Vec<bool> = s.layers.iter().map(Layer::is_plotted).collect();
+        assert_eq!(plotted, [true, false, true, true, false]);
+    }
+
+    #[test]
+    fn by_pen_keeps_unplotted_layers_apart_and_as_they_are() {
+        let scene = scene_with_unplotted();
+        let flat = by_pen(&scene);
+        let layer_ids: Vec<&str> = flat.layers.iter().map(|l| l.id.as_str()).collect();
+        // Unplotted first, back to front (guides at depth 9, notes at 0);
+        // pen 3 draws nothing plotted, so it gets no flat layer.
+        assert_eq!(layer_ids, ["guides", "notes", "pen-1.layer", "pen-2.layer"]);
+        assert_eq!(ids(&flat.layers[2]), ["b1", "m1"], "no guide paths");
+        let guides = &flat.layers[0];
+        let original = &scene.layers[1];
+        assert_eq!(
+            (guides.name.as_str(), guides.pen, guides.depth),
+            ("%guides", 1, 0)
+        );
+        // Groups, ids, styles and path data are those of the original; only
+        // the margin moved into the content's transform.
+        let mut content = original.content.clone();
+        content.transform = scene.page_transform() * content.transform;
+        assert_eq!(guides.content, content);
+        let mut before = Vec::new();
+        scene.layers[1]
+            .content
+            .visit_paths(scene.page_transform(), &mut |p, t| {
+                before.push(t * p.path.clone())
+            });
+        let mut after = Vec::new();
+        guides
+            .content
+            .visit_paths(flat.page_transform(), &mut |p, t| {
+                after.push(t * p.path.clone())
+            });
+        assert_eq!(before, after, "same place on the sheet");
+        // A second flattening changes nothing more.
+        assert_eq!(by_pen(&flat).layers[0], flat.layers[0]);
+    }
+
+    #[test]
+    fn plot_stages_pass_unplotted_layers_through() {
+        use crate::plot::{merge, multipass, simplify, sort};
+        let flat = by_pen(&scene_with_unplotted());
+        let mut staged = flat.clone();
+        merge::run(&mut staged, &merge::MergeOptions::DEFAULT);
+        simplify::run(&mut staged, &simplify::SimplifyOptions::DEFAULT);
+        sort::run(&mut staged, &sort::SortOptions::DEFAULT);
+        let mut passes = multipass::MultipassOptions::DEFAULT;
+        passes.passes = 3;
+        multipass::run(&mut staged, &passes);
+        assert_eq!(staged.layers[..2], flat.layers[..2]);
+        // …while the plotted layers did change (g2 and g3 would have
+        // merged, had the guides been plotted).
+        assert_ne!(staged.layers[2], flat.layers[2]);
+
+        let mut guides = flat.layers[0].clone();
+        assert!(take_paths(&mut guides).is_empty());
+        set_paths(&mut guides, Vec::new());
+        assert_eq!(guides, flat.layers[0]);
+    }
+
+    #[test]
+    fn unplotted_layers_are_set_aside_and_restored_in_place() {
+        let scene = scene_with_unplotted();
+        let mut s = scene.clone();
+        let taken = take_unplotted(&mut s);
+        let positions: Vec<usize> = taken.iter().map(|(i, _)| *i).collect();
+        assert_eq!(positions, [1, 4]);
+        assert!(s.layers.iter().all(Layer::is_plotted));
+        assert_eq!(s.layers.len(), 3);
+        restore_unplotted(&mut s, taken.into_iter().rev().collect());
+        assert_eq!(s, scene);
+    }
+
+    #[test]
+    fn set_aside_layers_are_neither_hatched_nor_hidden_nor_hide() {
+        use crate::plot::{hatch, occlude};
+        // A filled `%` frame in front of everything, over pen 1's lines.
+        let mut scene = scene_with_unplotted();
+        scene.layers[1].depth = -1;
+        let run = |s: &mut Scene| {
+            hatch::run(s, &hatch::HatchOptions::DEFAULT.with_spacing(2.0)).unwrap();
+            occlude::run(s, &occlude::OccludeOptions::DEFAULT).unwrap();
+        };
+        let mut set_aside = scene.clone();
+        let taken = take_unplotted(&mut set_aside);
+        run(&mut set_aside);
+        restore_unplotted(&mut set_aside, taken);
+        assert_eq!(set_aside.layers[1], scene.layers[1], "not hatched");
+        assert_eq!(set_aside.layers[4], scene.layers[4]);
+        assert_eq!(set_aside.layers[2], scene.layers[2], "nothing hidden");
+        assert_eq!(set_aside, scene);
+        // Without setting them aside, the frame is hatched and hides the
+        // lines behind it.
+        let mut all = scene.clone();
+        run(&mut all);
+        assert_ne!(all.layers[1], scene.layers[1]);
+        assert_ne!(all.layers[2], scene.layers[2]);
+    }
+
+    #[test]
+    fn pen_named_like_an_unplotted_layer_is_still_plotted() {
+        let mut scene = test_scene();
+        scene.pens[1].name = "%red".into();
+        let flat = by_pen(&scene);
+        assert_eq!(flat.layers[1].name, "2 %red");
+        assert!(flat.layers.iter().all(Layer::is_plotted));
     }
 
     #[test]

@@ -425,15 +425,41 @@ fn hatch_direction(polygons: &[Vec<Point>], angle_deg: f64, spacing: f64) -> Res
 /// Every path with a fill loses it and keeps its outline; unless the fill
 /// is white (paper: nothing to draw), hatch lines for the area it enclosed
 /// (non-zero rule, like an SVG fill) are added right after it in the same
-/// group, with ids `<id>.hatch-<k>`, drawn by the same pen. Spacing, inset
-/// and angle are measured on the page, whatever the group transforms. Paths
-/// that enclose no area only lose their fill.
+/// group, with ids `<id>.hatch-<k>`, drawn by the same pen. A path whose
+/// [`Style::hatch`] gives its own spacing is hatched at that spacing (the
+/// other options as given). Spacing, inset and angle are measured on the
+/// page, whatever the group transforms. Paths that enclose no area only
+/// lose their fill.
 ///
 /// # Errors
 /// When the options are invalid or a region needs too many lines (see
 /// [`hatch_region`]).
 pub fn run(scene: &mut Scene, o: &HatchOptions) -> Result<()> {
-    o.validate()?;
+    run_with(scene, Some(o))
+}
+
+/// Hatches only the filled paths that carry their own spacing
+/// ([`Style::hatch`]), with [`HatchOptions::DEFAULT`] otherwise; other
+/// fills stay fills. This is what a scene gets whose motifs ask for
+/// hatching when its plot options do not.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_own(scene: &mut Scene) -> Result<()> {
+    run_with(scene, None)
+}
+
+/// True when some path carries its own hatch spacing.
+pub fn has_own_hatch(scene: &Scene) -> bool {
+    let mut found = false;
+    scene.visit_paths(|_, p, _| found |= p.style.hatch.is_some() && p.style.fill.is_some());
+    found
+}
+
+fn run_with(scene: &mut Scene, o: Option<&HatchOptions>) -> Result<()> {
+    if let Some(o) = o {
+        o.validate()?;
+    }
     let page = scene.page_transform();
     for layer in &mut scene.layers {
         hatch_group(&mut layer.content, page, o)?;
@@ -443,7 +469,7 @@ pub fn run(scene: &mut Scene, o: &HatchOptions) -> Result<()> {
 
 const WHITE: Color = Color::rgb(255, 255, 255);
 
-fn hatch_group(group: &mut Group, outer: Affine, o: &HatchOptions) -> Result<()> {
+fn hatch_group(group: &mut Group, outer: Affine, o: Option<&HatchOptions>) -> Result<()> {
     let here = outer * group.transform;
     let children = std::mem::take(&mut group.children);
     let mut out = Vec::with_capacity(children.len());
@@ -454,14 +480,28 @@ fn hatch_group(group: &mut Group, outer: Affine, o: &HatchOptions) -> Result<()>
                 out.push(Node::Group(g));
             }
             Node::Path(mut p) => {
+                let options = match (p.style.hatch, o) {
+                    (Some(spacing), o) => {
+                        let o = o.copied().unwrap_or(HatchOptions::DEFAULT);
+                        let o = o.with_spacing(spacing);
+                        o.validate()?;
+                        o
+                    }
+                    (None, Some(o)) => *o,
+                    (None, None) => {
+                        out.push(Node::Path(p));
+                        continue;
+                    }
+                };
                 let Some(fill) = p.style.fill.take() else {
                     out.push(Node::Path(p));
                     continue;
                 };
+                p.style.hatch = None;
                 let lines = if fill == WHITE {
                     Vec::new()
                 } else {
-                    hatch_path(&p.path, here, o)?
+                    hatch_path(&p.path, here, &options)?
                 };
                 let id = p.id.clone();
                 out.push(Node::Path(p));
@@ -671,12 +711,16 @@ mod tests {
             Rect::new(0.0, 0.0, 5.0, 5.0).to_path(0.0),
             Style {
                 fill: Some(Color::BLACK),
+                ..Style::default()
             },
         );
         g.push_path(
             "white",
             Rect::new(10.0, 0.0, 15.0, 5.0).to_path(0.0),
-            Style { fill: Some(WHITE) },
+            Style {
+                fill: Some(WHITE),
+                ..Style::default()
+            },
         );
         g.push_path(
             "plain",
@@ -719,6 +763,67 @@ mod tests {
         assert!(ids.contains(&"white".to_string()) && ids.contains(&"plain".to_string()));
         assert!(!ids.iter().any(|i| i.starts_with("white.hatch")));
         assert!(run(&mut scene, &HatchOptions::DEFAULT.with_spacing(0.0)).is_err());
+    }
+
+    #[test]
+    fn a_path_with_its_own_spacing_is_hatched_even_without_options() {
+        let mut g = Group::new("l.g");
+        let own = Style {
+            fill: Some(Color::BLACK),
+            hatch: Some(2.5),
+            ..Style::default()
+        };
+        g.push_path("own", Rect::new(0.0, 0.0, 20.0, 20.0).to_path(0.0), own);
+        g.push_path(
+            "fill",
+            Rect::new(30.0, 0.0, 40.0, 10.0).to_path(0.0),
+            Style {
+                fill: Some(Color::BLACK),
+                ..Style::default()
+            },
+        );
+        let mut scene = Scene {
+            page: Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
+            pens: Vec::new(),
+            layers: vec![Layer {
+                id: "l".into(),
+                name: "l".into(),
+                pen: 1,
+                depth: 0,
+                content: g,
+            }],
+            description: None,
+        };
+        assert!(has_own_hatch(&scene));
+        let before = scene.clone();
+        run_own(&mut scene).unwrap();
+        let mut hatch_len = 0.0;
+        let mut kept_fill = Vec::new();
+        scene.visit_paths(|_, p, _| {
+            if p.id.starts_with("own.hatch-") {
+                hatch_len += path_length(&p.path);
+            }
+            if p.style.fill.is_some() {
+                kept_fill.push(p.id.clone());
+            }
+        });
+        // 400 mm² at 2.5 mm spacing: about 160 mm of lines (plus joins).
+        assert!((150.0..200.0).contains(&hatch_len), "{hatch_len}");
+        assert_eq!(kept_fill, ["fill"], "a fill without its own spacing stays");
+        assert!(!has_own_hatch(&scene));
+        // With options, the path's own spacing still wins over theirs.
+        let mut with = before;
+        run(&mut with, &HatchOptions::DEFAULT.with_spacing(0.5)).unwrap();
+        let mut own_len = 0.0;
+        with.visit_paths(|_, p, _| {
+            if p.id.starts_with("own.hatch-") {
+                own_len += path_length(&p.path);
+            }
+        });
+        assert!(
+            (own_len - hatch_len).abs() < 1e-6,
+            "{own_len} vs {hatch_len}"
+        );
     }
 
     /// Performance sanity, not asserted: `cargo test --release --lib

@@ -462,6 +462,7 @@ mod tests {
             path: line((10.0, 10.0), (0.0, 10.0)),
             style: Style {
                 fill: Some(Color::BLACK),
+                ..Style::default()
             },
         };
         let paths = vec![

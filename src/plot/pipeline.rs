@@ -149,12 +149,21 @@ pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
     if let Some(t) = &o.transform {
         transform::apply(&mut scene, t);
     }
+    // Layers that are not plotted (`%` labels) are guides: neither
+    // hatched, nor hidden, nor hiding.
+    let unplotted = flatten::take_unplotted(&mut scene);
     if let Some(h) = &o.hatch {
         hatch::run(&mut scene, h)?;
+    } else if hatch::has_own_hatch(&scene) {
+        hatch::run_own(&mut scene)?;
     }
     if let Some(occ) = &o.occlude {
-        occlude::run(&mut scene, occ)?;
+        let mut occ = occ.clone();
+        occ.skip_layers
+            .retain(|id| !unplotted.iter().any(|(_, l)| l.id == *id));
+        occlude::run(&mut scene, &occ)?;
     }
+    flatten::restore_unplotted(&mut scene, unplotted);
     if !o.per_pen() {
         return Ok(scene);
     }

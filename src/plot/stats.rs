@@ -22,12 +22,20 @@
 //!   `pen_down_mm / pen_down_mm_s + pen_up_mm / pen_up_mm_s + pen_lifts ·
 //!   pen_lift_s`. Acceleration is ignored, so real plots of many tiny paths
 //!   take longer; pen changes between layers are not counted.
+//!
+//! **Layers that are not plotted** (AxiDraw's `%` documentation layers,
+//! [`Layer::is_plotted`](crate::scene::Layer::is_plotted) false) are listed
+//! like the others, first (where the SVG writer puts them), with
+//! [`LayerStats::plotted`] false and figures computed as if that layer were
+//! plotted on its own; they count in none of the totals of [`PlotStats`].
 
-use kurbo::{BezPath, PathEl, Point};
+use std::borrow::Cow;
+
+use kurbo::{Affine, BezPath, PathEl, Point};
 use serde::{Deserialize, Serialize};
 
 use super::flatten::{by_pen, el_end};
-use crate::scene::{path_length, Node, Scene};
+use crate::scene::{path_length, Scene};
 
 /// Plotter speeds for the time estimate of [`stats`].
 #[non_exhaustive]
@@ -82,15 +90,21 @@ impl Default for Speeds {
     }
 }
 
-/// Figures of one plotted layer (one pen).
+/// Figures of one layer of the plot: one pen's layer, or a layer that is
+/// not plotted.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LayerStats {
-    /// Layer id (`pen-N`).
+    /// Layer id: `pen-N.layer` for a pen's layer, the scene layer's own id
+    /// for a layer that is not plotted.
     pub id: String,
-    /// The pen's name.
+    /// The pen's name (the layer's name, `%…`, for a layer that is not
+    /// plotted).
     pub name: String,
     /// Pen number.
     pub pen: u32,
+    /// Whether the plotter draws this layer. When false (a `%`
+    /// documentation layer), its figures are not part of the totals.
+    pub plotted: bool,
     /// Number of paths.
     pub paths: usize,
     /// Number of pen lifts (subpaths that draw).
@@ -103,7 +117,7 @@ pub struct LayerStats {
     pub plot_time_s: f64,
 }
 
-/// Figures of a whole plot: totals over the layers, and each layer.
+/// Figures of a whole plot: totals over the plotted layers, and each layer.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PlotStats {
     /// Number of paths.
@@ -116,7 +130,8 @@ pub struct PlotStats {
     pub pen_up_mm: f64,
     /// Estimated time, s (the sum over the layers).
     pub plot_time_s: f64,
-    /// Per layer, in plotting order.
+    /// Per layer, in the order of the file: layers that are not plotted
+    /// first, then the pens in plotting order.
     pub layers: Vec<LayerStats>,
 }
 
@@ -132,27 +147,33 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
         layers: Vec::with_capacity(flat.layers.len()),
     };
     for layer in &flat.layers {
-        let paths: Vec<&BezPath> = layer
-            .content
-            .children
-            .iter()
-            .filter_map(|n| match n {
-                Node::Path(p) => Some(&p.path),
-                Node::Group(_) => None,
-            })
-            .collect();
+        // A pen's layer is flat; a layer that is not plotted keeps its
+        // groups (see `by_pen`).
+        let mut paths: Vec<Cow<'_, BezPath>> = Vec::new();
+        layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+            paths.push(if t == Affine::IDENTITY {
+                Cow::Borrowed(&p.path)
+            } else {
+                Cow::Owned(t * p.path.clone())
+            });
+        });
         let pen_down_mm: f64 = paths.iter().map(|p| path_length(p)).sum();
-        let (pen_up_mm, pen_lifts) = travel(paths.iter().copied());
+        let (pen_up_mm, pen_lifts) = travel(paths.iter().map(|p| &**p));
         let s = LayerStats {
             id: layer.id.clone(),
             name: layer.name.clone(),
             pen: layer.pen,
+            plotted: layer.is_plotted(),
             paths: paths.len(),
             pen_lifts,
             pen_down_mm,
             pen_up_mm,
             plot_time_s: speeds.time(pen_down_mm, pen_up_mm, pen_lifts),
         };
+        if !s.plotted {
+            total.layers.push(s);
+            continue;
+        }
         total.paths += s.paths;
         total.pen_lifts += s.pen_lifts;
         total.pen_down_mm += s.pen_down_mm;
@@ -328,6 +349,66 @@ mod tests {
             assert!(json[key].is_number(), "{key}");
         }
         assert_eq!(json["layers"][1]["id"], "pen-2.layer");
+    }
+
+    #[test]
+    fn unplotted_layers_are_listed_but_not_counted() {
+        let mut plotted = Group::new("plotted");
+        plotted.push_path("p", line((0.0, 0.0), (30.0, 0.0)), Style::default());
+        let mut guides = Group::new("guides");
+        let mut inner = Group::new("inner");
+        inner.transform = Affine::scale(2.0);
+        inner.push_path("g", line((0.0, 10.0), (0.0, 60.0)), Style::default());
+        guides.push_group(inner);
+        guides.push_path("h", line((5.0, 0.0), (5.0, 1.0)), Style::default());
+        let layer = |id: &str, name: &str, pen, content| Layer {
+            id: id.into(),
+            name: name.into(),
+            pen,
+            depth: 0,
+            content,
+        };
+        let mut scene = Scene {
+            page: Page::named(PaperName::A4, Orientation::Portrait, Margins::default()),
+            pens: vec![],
+            layers: vec![
+                layer("drawing", "drawing", 1, plotted),
+                layer("guides", "%guides", 1, guides),
+            ],
+            description: None,
+        };
+        let s = stats(&scene, &Speeds::DEFAULT);
+        assert_eq!(s.layers.len(), 2);
+        let g = &s.layers[0];
+        assert_eq!(
+            (g.id.as_str(), g.name.as_str(), g.pen, g.plotted),
+            ("guides", "%guides", 1, false)
+        );
+        // Its own figures, groups and transforms included: 100 + 1 mm.
+        assert_eq!((g.paths, g.pen_lifts), (2, 2));
+        assert!((g.pen_down_mm - 101.0).abs() < 1e-9, "{}", g.pen_down_mm);
+        assert!(g.pen_up_mm > 0.0 && g.plot_time_s > 0.0);
+        let p = &s.layers[1];
+        assert!(p.plotted);
+        // The totals are the plotted layer's alone.
+        assert_eq!((s.paths, s.pen_lifts), (p.paths, p.pen_lifts));
+        assert_eq!(
+            (s.pen_down_mm, s.pen_up_mm, s.plot_time_s),
+            (p.pen_down_mm, p.pen_up_mm, p.plot_time_s)
+        );
+        assert_eq!(s.pen_down_mm, 30.0);
+        let json = serde_json::to_value(&s).unwrap();
+        assert_eq!(json["layers"][0]["plotted"], false);
+        assert_eq!(json["layers"][1]["plotted"], true);
+
+        // Without the plotted layer, nothing is plotted at all.
+        scene.layers.remove(0);
+        let s = stats(&scene, &Speeds::DEFAULT);
+        assert_eq!(
+            (s.paths, s.pen_down_mm, s.pen_up_mm, s.plot_time_s),
+            (0, 0.0, 0.0, 0.0)
+        );
+        assert_eq!(s.layers.len(), 1);
     }
 
     #[test]

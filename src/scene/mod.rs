@@ -38,6 +38,15 @@ pub struct Pen {
 pub struct Style {
     /// Fill colour; `None` draws the outline only (the plotter default).
     pub fill: Option<Color>,
+    /// Hatch spacing (mm) of this path's fill, overriding the hatch
+    /// stage's; a path with it is hatched even when the scene's plot
+    /// options ask for no hatching ([`crate::plot::hatch`]).
+    pub hatch: Option<f64>,
+    /// Only the fill is painted, no stroke: the preview colour of what
+    /// stays visible of a filled shape that hidden-line removal cut
+    /// ([`crate::plot::occlude`]). A pen has nothing to draw here, so the
+    /// plot outputs (per-pen stages, G-code, HPGL, stats) leave it out.
+    pub fill_only: bool,
 }
 
 /// A path with its style and stable id.
@@ -137,6 +146,33 @@ pub struct Layer {
     pub content: Group,
 }
 
+impl Layer {
+    /// The first character of the name of a layer that is not plotted:
+    /// AxiDraw's *documentation layer* (`%guides`, `% sketch`).
+    pub const NOT_PLOTTED_PREFIX: char = '%';
+
+    /// Whether the plotter draws this layer: false for a documentation
+    /// layer, one whose name starts with [`Layer::NOT_PLOTTED_PREFIX`]
+    /// after any leading whitespace (see [`Layer::name_is_plotted`]).
+    ///
+    /// Such a layer is reference material kept in the drawing (guides, a
+    /// sketch, notes): the SVG writer keeps it as an Inkscape layer with
+    /// its name as the label (AxiDraw skips it), the PNG preview shows it,
+    /// G-code and HPGL leave it out, the plot stages pass it through
+    /// unchanged, and plot statistics list it without counting it.
+    pub fn is_plotted(&self) -> bool {
+        Layer::name_is_plotted(&self.name)
+    }
+
+    /// Whether a layer named `name` is plotted: false when its first
+    /// non-whitespace character is [`Layer::NOT_PLOTTED_PREFIX`], as in
+    /// AxiDraw's layer control (`"%guides"`, `"  % 2 notes"`); true
+    /// otherwise (`"1 black"`, `"guides %"`, `""`).
+    pub fn name_is_plotted(name: &str) -> bool {
+        !name.trim_start().starts_with(Layer::NOT_PLOTTED_PREFIX)
+    }
+}
+
 /// A whole drawing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -154,7 +190,7 @@ pub struct Scene {
 /// Size figures of a scene or layer.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Stats {
-    /// Number of paths.
+    /// Number of paths a pen draws (fill-only paths are not counted).
     pub paths: usize,
     /// Total length drawn with the pen down, in mm.
     pub pen_down_mm: f64,
@@ -221,7 +257,8 @@ impl Scene {
     fn stats_where(&self, keep: impl Fn(&Layer) -> bool) -> Stats {
         let mut s = Stats::default();
         self.visit_paths(|layer, p, t| {
-            if keep(layer) {
+            // Fill-only paths are preview colour; no pen draws them.
+            if keep(layer) && !p.style.fill_only {
                 s.paths += 1;
                 s.pen_down_mm += path_length(&(t * p.path.clone()));
             }

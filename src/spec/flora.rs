@@ -582,10 +582,15 @@ impl BackgroundSpec {
         };
         let mf = format!("{f}.motifs");
         if self.motifs.len() < min || self.motifs.len() > max {
+            let takes = match (min, max) {
+                (0, 0) => "no motifs".to_string(),
+                (1, 1) => "exactly one motif".to_string(),
+                _ => format!("{min} or {max} motifs"),
+            };
             return Err(Error::invalid(
                 mf,
                 format!(
-                    "pattern {} takes {min}–{max} motifs, got {}",
+                    "pattern {} takes {takes}, got {}",
                     self.pattern,
                     self.motifs.len()
                 ),

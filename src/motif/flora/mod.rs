@@ -13,9 +13,10 @@
 //! A drawing has a closed **outline** — the shape that hides what lies
 //! behind it and the line a cutter cuts — and **details**: inner lines
 //! (petal edges, veins, stamens) drawn on top. [`Drawing::to_path`] joins
-//! them into one path, outline first, with every closed subpath wound like
-//! the outline, so the non-zero area of the whole path is exactly the area
-//! of the outline: details never punch holes into what the motif hides.
+//! them into one path, outline first, with every subpath wound like the
+//! outline (an open one as a fill closes it), so the non-zero area of the
+//! whole path is exactly the area of the outline: details never punch
+//! holes into the motif's fill or into what it hides.
 //!
 //! Randomness (`jitter`) comes from the caller's stream, so each placed
 //! motif varies a little and the same seed gives the same drawing.
@@ -24,10 +25,17 @@ mod flowers;
 mod leaves;
 mod tiles;
 
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+
 use kurbo::{Affine, BezPath, PathEl, Point, Shape};
 
+use crate::error::{Error, Result};
+use crate::geom::clip::clip_stroke;
+use crate::geom::offset::offset;
+use crate::geom::region::{FillRule, Region};
 use crate::rng::RandomStream;
-use crate::spec::MotifKind;
+use crate::spec::{MotifKind, MotifRef};
 
 /// A motif drawn in motif units (see the module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -88,6 +96,118 @@ pub fn draw(kind: MotifKind, params: &MotifParams, rng: &mut RandomStream) -> Dr
     d.normalised()
 }
 
+/// The motifs a scene can draw: the built-ins, and the user motifs its
+/// caller loaded (generators never read files).
+///
+/// A motif without jitter is the same drawing every time, so it is drawn
+/// once and reused (drawing a many-petalled flower takes a union of its
+/// petals: far more work than placing it).
+#[derive(Debug, Clone, Default)]
+pub struct Library {
+    user: BTreeMap<String, Drawing>,
+    plain: RefCell<BTreeMap<(MotifKind, Option<u32>), Drawing>>,
+}
+
+impl Library {
+    /// Only the built-in motifs.
+    pub fn new() -> Library {
+        Library::default()
+    }
+
+    /// Adds a user motif under the name the description uses for it (the
+    /// `svg` of a [`MotifRef::File`]).
+    pub fn add_user(&mut self, name: impl Into<String>, drawing: Drawing) {
+        self.user.insert(name.into(), drawing);
+    }
+
+    /// Draws the motif a description names. `rng` is used for jitter only.
+    ///
+    /// # Errors
+    /// [`Error::Motif`] for a user motif that was not loaded.
+    pub fn draw(&self, motif: &MotifRef, rng: &mut RandomStream) -> Result<Drawing> {
+        let (kind, params) = match motif {
+            MotifRef::Name(kind) => (*kind, MotifParams::DEFAULT),
+            MotifRef::Built(b) => (
+                b.kind,
+                MotifParams {
+                    petals: b.petals,
+                    jitter: b.jitter,
+                },
+            ),
+            MotifRef::File(f) => {
+                return self.user.get(&f.svg).cloned().ok_or_else(|| Error::Motif {
+                    name: f.svg.clone(),
+                    message: "was not loaded (user motifs are read by the caller of the generator)"
+                        .into(),
+                })
+            }
+        };
+        if params.jitter > 0.0 {
+            return Ok(draw(kind, &params, rng));
+        }
+        let key = (kind, params.petals);
+        if let Some(d) = self.plain.borrow().get(&key) {
+            return Ok(d.clone());
+        }
+        let d = draw(kind, &params, rng);
+        self.plain.borrow_mut().insert(key, d.clone());
+        Ok(d)
+    }
+}
+
+/// Turns the paths of a user's drawing (page coordinates of any size) into
+/// a motif: stretched into the unit box, anchored at its centre, with its
+/// natural aspect. The outline is the union of the areas its closed
+/// subpaths enclose; the details are the parts of all its lines strictly
+/// inside that outline (1% of the motif's size in), so lines that trace
+/// the outline are not drawn twice.
+///
+/// # Errors
+/// A message when the drawing is empty or encloses no area.
+pub fn user_drawing(paths: &[BezPath]) -> std::result::Result<Drawing, String> {
+    let bounds = paths
+        .iter()
+        .filter(|p| !p.elements().is_empty())
+        .map(Shape::bounding_box)
+        .reduce(|a, b| a.union(b))
+        .ok_or("the SVG has no paths")?;
+    if !(bounds.width() > 0.0 && bounds.height() > 0.0) {
+        return Err("the drawing has no width or no height".into());
+    }
+    let to_unit = Affine::scale_non_uniform(1.0 / bounds.width(), 1.0 / bounds.height())
+        * Affine::translate(-bounds.center().to_vec2());
+    let mut closed = BezPath::new();
+    for p in paths {
+        for sub in subpaths(p) {
+            if is_closed(&sub) {
+                closed.extend((to_unit * sub).elements().iter().copied());
+            }
+        }
+    }
+    if closed.elements().is_empty() {
+        return Err("it has no closed shape to use as its outline".into());
+    }
+    let outline = Region::new(closed, FillRule::NonZero)
+        .map_err(|e| format!("its closed shapes are unusable: {e}"))?;
+    if outline.is_empty() {
+        return Err("it has no closed shape to use as its outline".into());
+    }
+    let inner = offset(&outline, -0.01, 1e-4).unwrap_or_else(|_| Region::empty());
+    let mut details = BezPath::new();
+    for p in paths {
+        for part in clip_stroke(&(to_unit * p.clone()), &inner, 1e-4).inside {
+            details.extend(part.elements().iter().copied());
+        }
+    }
+    Ok(Drawing {
+        outline: outline.into_path(),
+        details,
+        anchor: Point::ZERO,
+        aspect: bounds.height() / bounds.width(),
+    }
+    .normalised())
+}
+
 impl Drawing {
     /// The motif as one path mapped by `placement`: the outline's
     /// subpaths, then the details (see the module docs for the winding).
@@ -99,7 +219,7 @@ impl Drawing {
         out
     }
 
-    /// Winds every closed subpath like the first outline subpath (see the
+    /// Winds every subpath like the first outline subpath (see the
     /// module docs).
     fn normalised(self) -> Drawing {
         let sign = subpaths(&self.outline)
@@ -140,12 +260,14 @@ fn is_closed(sub: &BezPath) -> bool {
     }
 }
 
-/// `path` with every closed subpath whose signed area has the other sign
-/// than `sign` reversed.
+/// `path` with every subpath whose signed area has the other sign than
+/// `sign` reversed. Open subpaths count too: a fill closes them with a
+/// straight line, and a detail arc wound against the outline would cut a
+/// hole into the motif's fill.
 fn wound(path: &BezPath, sign: f64) -> BezPath {
     let mut out = BezPath::new();
     for sub in subpaths(path) {
-        let sub = if is_closed(&sub) && sub.area() * sign < 0.0 {
+        let sub = if sub.area() * sign < 0.0 {
             sub.reverse_subpaths()
         } else {
             sub

@@ -8,12 +8,18 @@
 //! its set, and per-tree overrides (root, rotate, scale, parameters) are
 //! addressed by that id.
 
+pub mod adjust;
+pub mod background;
+pub mod bloom;
+
 use kurbo::{BezPath, Point, Vec2};
+
+pub use adjust::Adjustments;
+pub use bloom::FloraContext;
 
 use crate::error::Result;
 use crate::geom::{natural_spline, PathWalker, Side, SideTest, TOLERANCE};
 use crate::motif::tree::{self, Growth, LimbLook};
-use crate::rng::Seed;
 use crate::scene::{Color, Group, PathBudget, Style};
 use crate::spec::{
     Growth as Orientation, LimbSpec, Points, RegionLinesSpec, TreeOverride, TreeSetSpec,
@@ -128,24 +134,43 @@ pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
 /// Grows and draws a tree set into a group with id `group_id`, calling
 /// `tree_done` after each tree.
 ///
-/// Each tree gets its own random stream, derived from `seed` and its id, so
-/// changing one set or tree leaves the others as they were.
+/// Each tree gets its own random stream, derived from the seed and its id,
+/// so changing one set or tree leaves the others as they were. The final
+/// adjustment of a tree (by its full id) hides it with its flowers and
+/// leaves, or moves its root, turns and scales it before it grows, so the
+/// region lines still hold. Each tree is a [solid](Group::solid) group of
+/// limbs, followed by its leaves and flowers ([`bloom`]).
+#[allow(clippy::too_many_arguments)]
 pub fn tree_set(
     set: &TreeSetSpec,
     group_id: &str,
     limbs: &LimbSpec,
     flow: &Flow,
-    seed: Seed,
+    cx: &FloraContext<'_>,
+    adjust: &mut Adjustments<'_>,
     budget: &mut PathBudget,
     tree_done: &mut dyn FnMut(),
 ) -> Result<Group> {
     let mut group = Group::new(group_id);
     let style = Style {
         fill: limbs.fill.as_deref().and_then(Color::parse),
+        ..Style::default()
     };
     let overrides = overrides_by_tree(set);
-    for (i, place) in placements(set).into_iter().enumerate() {
-        let tree_id = format!("tree-{i}");
+    for (i, mut place) in placements(set).into_iter().enumerate() {
+        let full_id = format!("{group_id}.tree-{i}");
+        let adjusted = adjust.take_tree(&full_id)?;
+        if adjusted.is_some_and(|a| a.hide) {
+            adjust.take_parts_of(&full_id);
+            tree_done();
+            continue;
+        }
+        if let Some(a) = adjusted {
+            let [dx, dy] = a.offset.unwrap_or([0.0, 0.0]);
+            place.root += Vec2::new(dx, dy);
+            place.direction = turn(place.direction, a.rotate.unwrap_or(0.0));
+            place.scale *= a.scale.unwrap_or(1.0);
+        }
         let params = match overrides[i] {
             Some(o) => o.params.over(&set.params),
             None => set.params.clone(),
@@ -154,7 +179,6 @@ pub fn tree_set(
         p.trunk *= place.scale;
         let downward = place.direction.y > 0.0;
         let blocked = |q: Point| flow.blocks(q, downward);
-        let full_id = format!("{group_id}.{tree_id}");
         let skeleton = tree::grow(
             set.rule,
             &p,
@@ -163,7 +187,7 @@ pub fn tree_set(
                 direction: place.direction,
                 blocked: &blocked,
             },
-            seed.derive(&full_id).stream(),
+            cx.seed.derive(&full_id).stream(),
             budget,
             &format!("tree {full_id}"),
         )?;
@@ -178,6 +202,12 @@ pub fn tree_set(
             tree_group.push_path(format!("{full_id}.limb-{k}"), path, style.clone());
         }
         group.push_group(tree_group);
+        if let Some(flora) =
+            bloom::tree_flora(set, &skeleton, i, &full_id, place.scale, cx, adjust, budget)?
+        {
+            group.push_group(flora.leaves);
+            group.push_group(flora.flowers);
+        }
         tree_done();
     }
     Ok(group)

@@ -79,7 +79,12 @@ fn overrides_change_exactly_the_addressed_tree() {
             "l.t",
             &limbs,
             &flow,
-            Seed(3),
+            &FloraContext {
+                library: &crate::motif::flora::Library::new(),
+                seed: crate::rng::Seed(3),
+                depth: 0,
+            },
+            &mut Adjustments::new(&[]),
             &mut PathBudget::new(10_000),
             &mut || {},
         )
@@ -111,4 +116,327 @@ fn region_lines_block_above_upper_and_below_lower() {
     // The lower line stops only downward growth.
     assert!(!flow.blocks(Point::new(50.0, 90.0), false));
     assert!(flow.blocks(Point::new(50.0, 90.0), true));
+}
+
+// ------------------------------------------------ flowers and leaves
+
+/// A regular polygon with `n` corners filling the unit box, anchored at its
+/// centre: user motifs told apart by their element count, whatever the
+/// built-in drawings look like.
+fn polygon(n: usize) -> crate::motif::flora::Drawing {
+    let mut outline = kurbo::BezPath::new();
+    for i in 0..n {
+        let a = std::f64::consts::TAU * i as f64 / n as f64;
+        let p = Point::new(0.5 * a.sin(), -0.5 * a.cos());
+        if i == 0 {
+            outline.move_to(p);
+        } else {
+            outline.line_to(p);
+        }
+    }
+    outline.close_path();
+    crate::motif::flora::Drawing {
+        outline,
+        details: kurbo::BezPath::new(),
+        anchor: Point::ZERO,
+        aspect: 1.0,
+    }
+}
+
+/// Polygons with 3 to 7 corners, named `p3` … `p7`.
+fn polygons() -> crate::motif::flora::Library {
+    let mut lib = crate::motif::flora::Library::new();
+    for n in 3..=7 {
+        lib.add_user(format!("p{n}"), polygon(n));
+    }
+    lib
+}
+
+/// The corner count of a polygon motif placed as one path.
+fn corners(path: &kurbo::BezPath) -> usize {
+    path.elements()
+        .iter()
+        .filter(|e| !matches!(e, kurbo::PathEl::ClosePath))
+        .count()
+}
+
+/// The first tree set of a one-layer description with the given set body.
+fn flowering_set(body: &str) -> TreeSetSpec {
+    let text = format!(
+        "version = 1\n[[layers]]\nname = \"l\"\n[[layers.trees]]\nrule = \"tree2\"\n\
+         centre = [[0, 100], [200, 100]]\n{body}"
+    );
+    SceneSpec::parse(&text, Format::Toml)
+        .unwrap_or_else(|e| panic!("{e}\n{text}"))
+        .layers
+        .remove(0)
+        .trees
+        .remove(0)
+}
+
+/// The paths of a grown set, by id.
+fn grown(
+    set: &TreeSetSpec,
+    lib: &crate::motif::flora::Library,
+    depth: i32,
+    adjust: &[crate::spec::AdjustSpec],
+) -> crate::error::Result<std::collections::BTreeMap<String, kurbo::BezPath>> {
+    let mut adjustments = Adjustments::new(adjust);
+    let group = tree_set(
+        set,
+        "l.s",
+        &LimbSpec::default(),
+        &Flow::new(&RegionLinesSpec::default()),
+        &FloraContext {
+            library: lib,
+            seed: crate::rng::Seed(9),
+            depth,
+        },
+        &mut adjustments,
+        &mut PathBudget::new(100_000),
+        &mut || {},
+    )?;
+    adjustments.finish()?;
+    let mut paths = std::collections::BTreeMap::new();
+    group.visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+        paths.insert(p.id.clone(), t * p.path.clone());
+    });
+    Ok(paths)
+}
+
+/// `n` in the `name-n` part of an id.
+fn index(id: &str, name: &str) -> Option<usize> {
+    id.split('.')
+        .find_map(|s| s.strip_prefix(name)?.strip_prefix('-')?.parse().ok())
+}
+
+fn last_part(id: &str) -> &str {
+    id.rsplit('.').next().unwrap()
+}
+
+const ASSIGN_BODY: &str = r#"count = 5
+params = { generations = 3, trunk = 15, jitter_angle = 0, jitter_length = 0 }
+[layers.trees.flowers]
+motifs = [{ svg = "p3" }, { svg = "p4" }, { svg = "p5" }]
+assign = "ASSIGN"
+width = 6
+[layers.trees.leaves.ring]
+motifs = [{ svg = "p6" }, { svg = "p7" }]
+count = 2
+[layers.trees.leaves.joints]
+motifs = [{ svg = "p7" }, { svg = "p3" }, { svg = "p4" }, { svg = "p5" }]
+"#;
+
+#[test]
+fn type_1_cycles_flower_motifs_per_tree_and_uses_the_first_leaf_motif() {
+    let set = flowering_set(&ASSIGN_BODY.replace("ASSIGN", "type1"));
+    let paths = grown(&set, &polygons(), 0, &[]).unwrap();
+    let mut flowers_of_tree = [0usize; 5];
+    for (id, p) in &paths {
+        let last = last_part(id);
+        if last.starts_with("flower-") {
+            let i = index(id, "flower").unwrap();
+            assert_eq!(corners(p), 3 + i % 3, "{id}");
+            flowers_of_tree[index(id, "tree").unwrap()] += 1;
+        } else if last.starts_with("leaf-") {
+            assert_eq!(corners(p), 6, "{id}");
+        } else if last.starts_with("joint-") {
+            assert_eq!(corners(p), 7, "{id}");
+        }
+    }
+    // Enough flowers on every tree to see the motifs cycle.
+    assert!(
+        flowers_of_tree.iter().all(|n| *n > 3),
+        "{flowers_of_tree:?}"
+    );
+}
+
+#[test]
+fn type_2_gives_every_flower_and_leaf_of_tree_k_motif_k_mod_n() {
+    let set = flowering_set(&ASSIGN_BODY.replace("ASSIGN", "type2"));
+    let paths = grown(&set, &polygons(), 0, &[]).unwrap();
+    let mut seen = [[false; 3]; 5];
+    for (id, p) in &paths {
+        let k = index(id, "tree").unwrap();
+        let last = last_part(id);
+        let (want, slot) = if last.starts_with("flower-") {
+            ([3, 4, 5][k % 3], 0)
+        } else if last.starts_with("leaf-") {
+            ([6, 7][k % 2], 1)
+        } else if last.starts_with("joint-") {
+            ([7, 3, 4, 5][k % 4], 2)
+        } else {
+            continue;
+        };
+        assert_eq!(corners(p), want, "{id}");
+        seen[k][slot] = true;
+    }
+    assert_eq!(
+        seen, [[true; 3]; 5],
+        "every tree has flowers and both kinds of leaves"
+    );
+}
+
+/// Widths of the flowers of tree 0, in flower order.
+fn flower_widths(paths: &std::collections::BTreeMap<String, kurbo::BezPath>) -> Vec<f64> {
+    let mut w: Vec<(usize, f64)> = paths
+        .iter()
+        .filter(|(id, _)| id.starts_with("l.s.tree-0.") && last_part(id).starts_with("flower-"))
+        .map(|(id, p)| {
+            (
+                index(id, "flower").unwrap(),
+                kurbo::Shape::bounding_box(p).width(),
+            )
+        })
+        .collect();
+    w.sort_by_key(|(i, _)| *i);
+    w.into_iter().map(|(_, w)| w).collect()
+}
+
+#[test]
+fn main_largest_order_shrinks_flowers_evenly_to_smallest() {
+    // The diamond's width in motif units.
+    let unit = kurbo::Shape::bounding_box(&polygon(4).outline).width();
+    let set = flowering_set(
+        r#"params = { generations = 4, trunk = 15 }
+[layers.trees.flowers]
+motifs = [{ svg = "p4" }]
+width = 10
+main_largest = "order"
+smallest = 0.4
+"#,
+    );
+    let w = flower_widths(&grown(&set, &polygons(), 0, &[]).unwrap());
+    let n = w.len();
+    assert!(n >= 4, "{w:?}");
+    for (i, wi) in w.iter().enumerate() {
+        let want = 10.0 * unit * (1.0 - 0.6 * i as f64 / (n - 1) as f64);
+        assert!(
+            (wi - want).abs() < 1e-9,
+            "flower {i}: {wi} instead of {want}"
+        );
+    }
+
+    let none = flowering_set(
+        r#"params = { generations = 4, trunk = 15 }
+[layers.trees.flowers]
+motifs = [{ svg = "p4" }]
+width = 10
+"#,
+    );
+    for wi in flower_widths(&grown(&none, &polygons(), 2, &[]).unwrap()) {
+        assert!((wi - 10.0 * unit).abs() < 1e-9, "{wi}");
+    }
+}
+
+#[test]
+fn main_largest_depth_shrinks_by_smallest_per_depth_step() {
+    let unit = kurbo::Shape::bounding_box(&polygon(4).outline).width();
+    let set = flowering_set(
+        r#"params = { generations = 3, trunk = 15 }
+[layers.trees.flowers]
+motifs = [{ svg = "p4" }]
+width = 10
+main_largest = "depth"
+smallest = 0.5
+"#,
+    );
+    for (depth, factor) in [(0, 1.0), (1, 0.5), (2, 0.25)] {
+        for wi in flower_widths(&grown(&set, &polygons(), depth, &[]).unwrap()) {
+            assert!(
+                (wi - 10.0 * unit * factor).abs() < 1e-9,
+                "depth {depth}: {wi}"
+            );
+        }
+    }
+}
+
+#[test]
+fn flowers_and_leaves_scale_with_a_scaled_tree() {
+    let body = r#"params = { generations = 3, trunk = 15 }
+[layers.trees.flowers]
+motifs = [{ svg = "p4" }]
+width = 10
+[layers.trees.leaves.ring]
+motifs = [{ svg = "p5" }]
+count = 1
+width = 4
+"#;
+    let plain = flowering_set(body);
+    let mut scaled = plain.clone();
+    scaled.overrides.push(TreeOverride {
+        id: "tree-0".into(),
+        root: None,
+        rotate: None,
+        scale: Some(2.0),
+        params: TreeParams::default(),
+    });
+    let (a, b) = (
+        grown(&plain, &polygons(), 0, &[]).unwrap(),
+        grown(&scaled, &polygons(), 0, &[]).unwrap(),
+    );
+    let width = |p: &kurbo::BezPath| kurbo::Shape::bounding_box(p).width();
+    let mut n = 0;
+    for (id, p) in a.iter().filter(|(id, _)| !id.contains(".limb-")) {
+        assert!((width(&b[id]) - 2.0 * width(p)).abs() < 1e-9, "{id}");
+        n += 1;
+    }
+    assert!(n >= 4, "{n}");
+}
+
+#[test]
+fn a_hidden_flower_takes_its_ring_with_it_and_uses_up_their_adjustments() {
+    let set = flowering_set(
+        r#"params = { generations = 2, trunk = 15 }
+[layers.trees.flowers]
+motifs = [{ svg = "p4" }]
+[layers.trees.leaves.ring]
+motifs = [{ svg = "p5" }]
+count = 3
+"#,
+    );
+    let adjust = |id: &str, hide: bool| crate::spec::AdjustSpec {
+        id: id.into(),
+        offset: (!hide).then_some([1.0, 1.0]),
+        rotate: None,
+        scale: None,
+        hide,
+        motif: None,
+    };
+    let list = [
+        adjust("l.s.tree-0.flower-1", true),
+        // Addresses a leaf of the hidden flower: it exists, so it is no
+        // error, and it brings nothing back.
+        adjust("l.s.tree-0.flower-1.leaf-2", false),
+    ];
+    let before = grown(&set, &polygons(), 0, &[]).unwrap();
+    let after = grown(&set, &polygons(), 0, &list).unwrap();
+    let gone: Vec<&String> = before
+        .keys()
+        .filter(|id| !after.contains_key(*id))
+        .collect();
+    assert_eq!(
+        gone,
+        [
+            "l.s.tree-0.flower-1",
+            "l.s.tree-0.flower-1.leaf-0",
+            "l.s.tree-0.flower-1.leaf-1",
+            "l.s.tree-0.flower-1.leaf-2"
+        ]
+    );
+    for (id, p) in &after {
+        assert_eq!(p, &before[id], "{id} changed");
+    }
+}
+
+#[test]
+fn a_user_motif_that_was_not_loaded_is_an_error_naming_it() {
+    let set = flowering_set(
+        r#"params = { generations = 2, trunk = 15 }
+[layers.trees.flowers]
+motifs = [{ svg = "p4" }, { svg = "missing.svg" }]
+"#,
+    );
+    let e = grown(&set, &polygons(), 0, &[]).unwrap_err().to_string();
+    assert!(e.contains("missing.svg"), "{e}");
 }

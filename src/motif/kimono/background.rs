@@ -1,0 +1,300 @@
+//! Background layers (SPEC §1.6, [000 §3.3, §4.9–4.10]): a mask grown from
+//! hidden trees, and a pattern composited only inside it.
+//!
+//! **Mask.** `count` hidden trees stand along the background's centre line
+//! and grow both ways from it, as in the source's figures: up (stopped by
+//! the upper region line) and down (stopped by the lower one). A stamp —
+//! a circle unless another motif is named — is put on every vertex; the
+//! mask is the union of the stamps, one region. The composite modes:
+//!
+//! 1. the trees grow freely between the region lines;
+//! 2. as 1, and a vertex outside every given circle also stops growth (a
+//!    root outside every circle gets no stamp either);
+//! 3. a sparser tree (Tree4 by default: few long forked branches), as 1;
+//! 4. as 3, and only vertices inside a circle get a stamp.
+//!
+//! **Pattern.** What fills the mask, clipped to it (tiles are cut exactly
+//! at the mask's outline):
+//!
+//! 1. solid: the mask itself, filled (preview) and hatched (pens) — when
+//!    the description gives no paint, a grey fill hatched every 1 mm;
+//! 2. the motifs tiled edge to edge on a grid, alternating like a
+//!    chequerboard (one motif repeats);
+//! 3. as 2 with `spacing` between tiles, every other column mirrored left
+//!    to right;
+//! 4. motifs at random places, sizes (0.6–1.2×) and angles, about one per
+//!    tile area (with spacing) of the mask;
+//! 5. "special solid": the motif fitted to each stamp's box separately.
+//!
+//! The mask's outline is drawn unless `outline = false`; the base paint
+//! (`paint`) fills it under patterns 2–5. Ids: `<layer>.background.mask`,
+//! `<layer>.background.tile-<n>`.
+
+use kurbo::{Affine, BezPath, Point, Rect, Shape};
+
+use super::{placements, FloraContext, Flow};
+use crate::error::Result;
+use crate::geom::clip::StrokeClipper;
+use crate::geom::region::{FillRule, Region};
+use crate::geom::TOLERANCE;
+use crate::motif::flora::Drawing;
+use crate::motif::tree::{self, Growth};
+use crate::scene::{Color, Group, PathBudget, Style};
+use crate::spec::{BackgroundSpec, LeavesSpec, PaintSpec, TreeSetSpec};
+
+/// Grey of a solid pattern when the description gives no paint.
+const SOLID_GREY: Color = Color::rgb(0xc8, 0xc8, 0xc8);
+
+/// Hatch spacing (mm) of a solid pattern when the description gives none.
+const SOLID_HATCH: f64 = 1.0;
+
+/// At most this many tiles are tried for pattern 4 (a safety net: the
+/// count follows the mask's area).
+const MAX_RANDOM_TILES: usize = 100_000;
+
+/// The background of a layer, as a group `group_id`.
+pub fn background(
+    bg: &BackgroundSpec,
+    group_id: &str,
+    flow: &Flow,
+    cx: &FloraContext<'_>,
+    budget: &mut PathBudget,
+) -> Result<Group> {
+    let mut group = Group::new(group_id);
+    let stamps = stamp_sites(bg, group_id, flow, cx, budget)?;
+    let mut rng = cx.seed.derive(&format!("{group_id}.stamp")).stream();
+    let stamp = cx.library.draw(&bg.stamp, &mut rng)?;
+    let stamp_boxes: Vec<Affine> = stamps
+        .iter()
+        .map(|p| Affine::translate(p.to_vec2()) * unit_to(&stamp, bg.stamp_width, bg.stamp_height))
+        .collect();
+    let regions: Vec<Region> = stamp_boxes
+        .iter()
+        .filter_map(|m| Region::new(*m * stamp.outline.clone(), FillRule::NonZero).ok())
+        .collect();
+    let mask = Region::union_all(&regions);
+    if mask.is_empty() {
+        return Ok(group);
+    }
+
+    let base = if bg.pattern == 1 {
+        solid_style(&bg.paint)
+    } else {
+        paint_style(&bg.paint)
+    };
+    if bg.outline || base.fill.is_some() {
+        budget.take(1, || format!("background {group_id}"))?;
+        group.push_path(format!("{group_id}.mask"), mask.path().clone(), base);
+    }
+
+    let clipper = StrokeClipper::new(&mask, TOLERANCE);
+    let mut tiles = Tiles {
+        group: &mut group,
+        clipper: &clipper,
+        budget,
+        id: group_id,
+        n: 0,
+    };
+    let motifs: Vec<Drawing> = bg
+        .motifs
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let mut rng = cx.seed.derive(&format!("{group_id}.motif-{i}")).stream();
+            cx.library.draw(m, &mut rng)
+        })
+        .collect::<Result<_>>()?;
+    let bounds = mask.bounds();
+    match bg.pattern {
+        2 | 3 => {
+            let mirror = bg.pattern == 3;
+            let gap = if mirror { bg.spacing } else { 0.0 };
+            let w = bg.width;
+            let h = bg.height.unwrap_or(w * motifs[0].aspect);
+            let (cols, rows) = grid(bounds, w + gap, h + gap);
+            for row in 0..rows {
+                for col in 0..cols {
+                    let d = &motifs[(row + col) % motifs.len()];
+                    let centre = Point::new(
+                        grid_start(bounds.x0, w + gap) + (col as f64 + 0.5) * (w + gap),
+                        grid_start(bounds.y0, h + gap) + (row as f64 + 0.5) * (h + gap),
+                    );
+                    let flip = if mirror && col % 2 == 1 { -1.0 } else { 1.0 };
+                    let m = Affine::translate(centre.to_vec2())
+                        * Affine::scale_non_uniform(flip * w, h)
+                        * Affine::translate(-d.outline.bounding_box().center().to_vec2());
+                    tiles.push(d, m)?;
+                }
+            }
+        }
+        4 => {
+            let mut rng = cx.seed.derive(&format!("{group_id}.scatter")).stream();
+            let w = bg.width;
+            let cell = (w + bg.spacing).powi(2);
+            let wanted = ((mask.area() / cell).ceil() as usize).min(MAX_RANDOM_TILES);
+            let mut placed = 0;
+            for _ in 0..wanted * 20 {
+                if placed == wanted {
+                    break;
+                }
+                let p = Point::new(
+                    rng.range(bounds.x0, bounds.x1),
+                    rng.range(bounds.y0, bounds.y1),
+                );
+                if !mask.contains(p) {
+                    continue;
+                }
+                let d = &motifs[placed % motifs.len()];
+                let size = rng.range(0.6, 1.2);
+                let angle = rng.range(0.0, std::f64::consts::TAU);
+                let h = bg.height.unwrap_or(w * d.aspect);
+                let m = Affine::translate(p.to_vec2())
+                    * Affine::rotate(angle)
+                    * Affine::scale_non_uniform(w * size, h * size)
+                    * Affine::translate(-d.outline.bounding_box().center().to_vec2());
+                tiles.push(d, m)?;
+                placed += 1;
+            }
+        }
+        5 => {
+            for m in &stamp_boxes {
+                let d = &motifs[0];
+                let fit = *m
+                    * Affine::translate(stamp.outline.bounding_box().center().to_vec2())
+                    * Affine::translate(-d.outline.bounding_box().center().to_vec2());
+                tiles.push(d, fit)?;
+            }
+        }
+        _ => {}
+    }
+    Ok(group)
+}
+
+/// Motif units → mm: `width × height` (height from the motif's aspect when
+/// not given), anchor at the origin.
+fn unit_to(d: &Drawing, width: f64, height: Option<f64>) -> Affine {
+    let h = height.unwrap_or(width * d.aspect);
+    Affine::scale_non_uniform(width, h) * Affine::translate(-d.anchor.to_vec2())
+}
+
+/// Grid lines are aligned to multiples of the cell from the page origin,
+/// so neighbouring backgrounds with the same tiles line up.
+fn grid_start(lo: f64, cell: f64) -> f64 {
+    (lo / cell).floor() * cell
+}
+
+/// Columns and rows of cells covering `bounds`.
+fn grid(bounds: Rect, cw: f64, ch: f64) -> (usize, usize) {
+    let cols = ((bounds.x1 - grid_start(bounds.x0, cw)) / cw)
+        .ceil()
+        .max(0.0) as usize;
+    let rows = ((bounds.y1 - grid_start(bounds.y0, ch)) / ch)
+        .ceil()
+        .max(0.0) as usize;
+    (cols, rows)
+}
+
+/// Tiles clipped to the mask, appended to the group.
+struct Tiles<'a, 'b> {
+    group: &'a mut Group,
+    clipper: &'a StrokeClipper,
+    budget: &'a mut PathBudget,
+    id: &'b str,
+    n: usize,
+}
+
+impl Tiles<'_, '_> {
+    fn push(&mut self, d: &Drawing, m: Affine) -> Result<()> {
+        let path = d.to_path(m);
+        let inside = self.clipper.clip(&path).inside;
+        if inside.is_empty() {
+            return Ok(());
+        }
+        let mut joined = BezPath::new();
+        for piece in inside {
+            joined.extend(piece.elements().iter().copied());
+        }
+        let id = format!("{}.tile-{}", self.id, self.n);
+        self.n += 1;
+        self.budget.take(1, || format!("background tile {id}"))?;
+        self.group.push_path(id, joined, Style::default());
+        Ok(())
+    }
+}
+
+fn paint_style(paint: &PaintSpec) -> Style {
+    Style {
+        fill: paint.color(),
+        hatch: paint.hatch,
+        fill_only: false,
+    }
+}
+
+/// Pattern 1's paint: the description's, or grey hatched every 1 mm.
+fn solid_style(paint: &PaintSpec) -> Style {
+    let style = paint_style(paint);
+    Style {
+        fill: style.fill.or(Some(SOLID_GREY)),
+        hatch: style.hatch.or(Some(SOLID_HATCH)),
+        fill_only: false,
+    }
+}
+
+/// The vertices that get a stamp, from the hidden mask trees.
+fn stamp_sites(
+    bg: &BackgroundSpec,
+    group_id: &str,
+    flow: &Flow,
+    cx: &FloraContext<'_>,
+    budget: &mut PathBudget,
+) -> Result<Vec<Point>> {
+    let circles: Vec<(Point, f64)> = bg
+        .circles
+        .iter()
+        .map(|[x, y, r]| (Point::new(*x, *y), *r))
+        .collect();
+    let in_circles = |p: Point| circles.iter().any(|(c, r)| c.distance(p) <= *r);
+    let set = TreeSetSpec {
+        id: None,
+        rule: bg.mask_rule(),
+        count: bg.count,
+        centre: bg.centre.clone(),
+        growth: bg.growth,
+        rotate: 0.0,
+        params: bg.params.clone(),
+        overrides: Vec::new(),
+        flowers: None,
+        leaves: LeavesSpec::default(),
+    };
+    let params = set.params.resolve();
+    // The hidden trees' limbs are never drawn, but they cost like paths,
+    // so they count against the budget.
+    let mut sites = Vec::new();
+    for (i, place) in placements(&set).into_iter().enumerate() {
+        for (way, direction) in [("up", place.direction), ("down", -place.direction)] {
+            let downward = direction.y > 0.0;
+            let blocked =
+                |q: Point| flow.blocks(q, downward) || (bg.composite == 2 && !in_circles(q));
+            let id = format!("{group_id}.mask-{i}.{way}");
+            let skeleton = tree::grow(
+                set.rule,
+                &params,
+                &Growth {
+                    root: place.root,
+                    direction,
+                    blocked: &blocked,
+                },
+                cx.seed.derive(&id).stream(),
+                budget,
+                &format!("background tree {id}"),
+            )?;
+            sites.extend(
+                skeleton
+                    .vertices()
+                    .filter(|p| !matches!(bg.composite, 2 | 4) || in_circles(*p)),
+            );
+        }
+    }
+    sites.dedup();
+    Ok(sites)
+}
