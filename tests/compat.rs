@@ -19,10 +19,15 @@ fn vpype_reads_one_layer_per_pen_with_every_path() {
     };
     let dir = tempfile::tempdir().unwrap();
     let svg = dir.path().join("hem.svg");
-    let spec = moyo::templates::get(moyo::templates::DEFAULT)
+    let mut spec = moyo::templates::get(moyo::templates::DEFAULT)
         .unwrap()
         .spec()
         .unwrap();
+    // vpype does not know AxiDraw's `%` layers: it would read the preview
+    // fills into layer 1. Plotting through vpype means turning them off.
+    if let Some(o) = spec.plot.occlude.as_mut() {
+        o.preview_fills = false;
+    }
     let rendered = moyo::project::render(&spec).unwrap();
     std::fs::write(&svg, &rendered.svg).unwrap();
 
@@ -75,11 +80,12 @@ fn vpype_reads_one_layer_per_pen_with_every_path() {
     assert_eq!(total, subpaths(&rendered.scene, None));
 }
 
-/// Subpaths drawn with `pen` (all pens for `None`).
+/// Subpaths drawn with `pen` (all pens for `None`); `%` layers (the
+/// preview fills) are not plotted, and vpype leaves them out too.
 fn subpaths(scene: &moyo::Scene, pen: Option<u32>) -> usize {
     let mut n = 0;
     scene.visit_paths(|layer, p, _| {
-        if pen.is_none_or(|pen| layer.pen == pen) {
+        if layer.is_plotted() && pen.is_none_or(|pen| layer.pen == pen) {
             n += p
                 .path
                 .elements()

@@ -1674,6 +1674,7 @@ page = { size = "A5", margin = 10 }
 
 [plot.occlude]
 silhouettes = true
+preview_fills = true
 
 [[layers]]
 name = "front"
@@ -1726,8 +1727,17 @@ fn partly_hidden_fills_keep_the_colour_of_their_visible_area() {
         "the crowded flowers hide each other ({fills} fills)"
     );
     assert!(rendered.svg.contains(";stroke:none\""));
+    assert!(rendered.svg.contains("inkscape:label=\"%preview fills\""));
+    // Without the option, the colour of cut shapes is simply gone.
+    let mut plain = spec.clone();
+    if let Some(o) = plain.plot.occlude.as_mut() {
+        o.preview_fills = false;
+    }
+    assert!(!render(&plain).svg.contains("stroke:none"));
     // Pens have nothing to draw there: per-pen outputs and stats skip them.
     assert_eq!(rendered.scene.stats().paths, drawn);
     let flat = moyo::plot::flatten::by_pen(&rendered.scene);
-    flat.visit_paths(|_, p, _| assert!(!p.style.fill_only, "{}", p.id));
+    flat.visit_paths(|l, p, _| {
+        assert!(!l.is_plotted() || !p.style.fill_only, "{}", p.id);
+    });
 }

@@ -61,7 +61,11 @@ fn stats_json_has_totals_and_layers() {
     assert!(number(&s, "pen_down_mm") > 1000.0);
     assert!(number(&s, "pen_up_mm") > 0.0);
     assert!(number(&s, "plot_time_s") > 0.0);
-    let layers = s["layers"].as_array().expect("layers");
+    // The default design keeps preview fills in a `%` layer: listed, not
+    // plotted, not in the totals.
+    let all = s["layers"].as_array().expect("layers");
+    let layers: Vec<_> = all.iter().filter(|l| l["plotted"] == true).collect();
+    assert_eq!(all.len(), layers.len() + 1, "one `%preview fills` layer");
     let svg = fs::read_to_string(dir.path().join("hem.svg")).unwrap();
     assert!(layers.len() >= 2);
     assert_eq!(layers.len(), pen_numbers(&svg).len(), "one per pen");

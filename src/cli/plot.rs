@@ -49,6 +49,10 @@ pub(crate) struct PlotArgs {
     /// silhouette first.
     #[arg(long, requires = "occlude", help_heading = "Stages")]
     silhouettes: bool,
+    /// With --occlude: keep the visible colour of partly hidden filled
+    /// shapes for the preview, in a `%` layer that is never plotted.
+    #[arg(long, requires = "occlude", help_heading = "Stages")]
+    preview_fills: bool,
     /// Hatch fills with lines this far apart (mm).
     #[arg(long, value_name = "SPACING", help_heading = "Stages")]
     hatch: Option<f64>,
@@ -245,6 +249,7 @@ impl PlotArgs {
             occlude: self.occlude.then(|| {
                 let mut o = OccludeOptions::default();
                 o.silhouettes = self.silhouettes;
+                o.preview_fills = self.preview_fills;
                 o
             }),
             hatch: self.hatch.map(|spacing| {

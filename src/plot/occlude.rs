@@ -32,11 +32,16 @@
 //! group transforms and the margins applied) and written back in the
 //! coordinates of the path's own group. A path that nothing hides is left
 //! exactly as it was. A filled path that is partly hidden loses its fill
-//! (its outline is now open pieces, which cannot carry one); the colour
-//! moves to a new [fill-only](crate::scene::Style::fill_only) path just
-//! before it, id plus [`FILL_SUFFIX`], covering the visible part of the
-//! area it filled (its area minus the shapes in front that meet it), so
-//! the preview keeps its colours while pens get only the visible strokes.
+//! (its outline is now open pieces, which cannot carry one). With
+//! [`OccludeOptions::preview_fills`] the colour moves to a
+//! [fill-only](crate::scene::Style::fill_only) path, id plus
+//! [`FILL_SUFFIX`], covering the visible part of the area it filled (its
+//! area minus the shapes in front that meet it). These paths, in paint
+//! order, make one extra layer at the back, [`FILLS_LAYER_NAME`]: a `%`
+//! layer, which AxiDraw and moyo's plot outputs never plot, so the preview
+//! keeps its colours while pens draw only the visible strokes. (Fills
+//! behind every stroke look the same as fills in place: what they would
+//! cover of a stroke behind them is hidden already.)
 //! To hatch shapes and have the hatching hidden too, run [`super::hatch`]
 //! first — hatch lines are strokes like any other — and keep closed
 //! outlines occluding.
@@ -83,7 +88,7 @@ use crate::error::{Error, Result};
 use crate::geom::clip::StrokeClipper;
 use crate::geom::region::{check_coordinates, FillRule, Region};
 use crate::geom::TOLERANCE;
-use crate::scene::{path_length, Group, Node, Scene, Style, StyledPath};
+use crate::scene::{path_length, Group, Layer, Node, Scene, Style, StyledPath};
 
 /// Appended to a group's id to make the id of its silhouette path.
 pub const SILHOUETTE_SUFFIX: &str = ".silhouette";
@@ -91,6 +96,13 @@ pub const SILHOUETTE_SUFFIX: &str = ".silhouette";
 /// Appended to a partly hidden filled path's id to make the id of the
 /// fill-only path that keeps the colour of its visible area.
 pub const FILL_SUFFIX: &str = ".fill";
+
+/// Id of the layer that holds the visible fills of partly hidden shapes.
+pub const FILLS_LAYER_ID: &str = "preview-fills";
+
+/// Its name: a `%` label, so it is kept in the SVG and shown in the
+/// preview but never plotted ([`Layer::is_plotted`]).
+pub const FILLS_LAYER_NAME: &str = "%preview fills";
 
 /// A subpath whose end lies this close (mm, on the page) to its start
 /// counts as closed even without a close-path.
@@ -113,6 +125,11 @@ pub struct OccludeOptions {
     /// near an outline (> 0); also the shortest visible piece kept.
     /// Default [`TOLERANCE`].
     pub tolerance: f64,
+    /// Keep the colour of partly hidden filled shapes for the preview, in
+    /// a `%` layer that is not plotted (see the module docs). Default
+    /// `false`: a `%` layer is skipped by AxiDraw and by moyo's outputs,
+    /// but other SVG readers (vpype, cutter software) would draw it.
+    pub preview_fills: bool,
 }
 
 impl OccludeOptions {
@@ -123,6 +140,7 @@ impl OccludeOptions {
         silhouettes: false,
         skip_layers: Vec::new(),
         tolerance: TOLERANCE,
+        preview_fills: false,
     };
 
     /// With [`OccludeOptions::closed_paths_occlude`] set.
@@ -150,6 +168,12 @@ impl OccludeOptions {
     /// With this tolerance (mm).
     pub fn with_tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
+        self
+    }
+
+    /// With [`OccludeOptions::preview_fills`] set.
+    pub fn with_preview_fills(mut self, preview_fills: bool) -> Self {
+        self.preview_fills = preview_fills;
         self
     }
 
@@ -232,16 +256,42 @@ pub fn run(scene: &mut Scene, o: &OccludeOptions) -> Result<()> {
             })
         })
         .collect();
-    let outcomes = hide(&painted, &occluders, o.tolerance);
+    let outcomes = hide(
+        &painted,
+        &occluders,
+        o.preview_fills.then(|| page.inverse()),
+        o.tolerance,
+    );
 
     let mut per_layer: Vec<Vec<Outcome>> = vec![Vec::new(); scene.layers.len()];
     for (p, outcome) in painted.iter().zip(outcomes) {
         per_layer[p.layer].push(outcome);
     }
+    let mut fills = Vec::new();
     for (layer, outcomes) in scene.layers.iter_mut().zip(per_layer) {
         if !outcomes.is_empty() {
-            apply(&mut layer.content, &mut outcomes.into_iter());
+            apply(&mut layer.content, &mut outcomes.into_iter(), &mut fills);
         }
+    }
+    if !fills.is_empty() {
+        fills.sort_by_key(|(paint, _)| *paint);
+        let mut content = Group::new(FILLS_LAYER_ID);
+        content
+            .children
+            .extend(fills.into_iter().map(|(_, p)| Node::Path(p)));
+        // A second run adds to the fills of the first.
+        if let Some(layer) = scene.layers.iter_mut().find(|l| l.id == FILLS_LAYER_ID) {
+            layer.content.children.extend(content.children);
+            return Ok(());
+        }
+        let pen = scene.pens.first().map_or(1, |p| p.number);
+        scene.layers.push(Layer {
+            id: FILLS_LAYER_ID.into(),
+            name: FILLS_LAYER_NAME.into(),
+            pen,
+            depth: i32::MAX,
+            content,
+        });
     }
     Ok(())
 }
@@ -266,6 +316,15 @@ struct Occluder {
     bounds: Rect,
 }
 
+/// The visible part of a partly hidden fill.
+#[derive(Debug, Clone, PartialEq)]
+struct VisibleFill {
+    /// Paint order of the path it comes from.
+    paint: usize,
+    /// The area, in the scene's drawable-area coordinates.
+    area: BezPath,
+}
+
 /// What happens to a path.
 #[derive(Debug, Clone, PartialEq)]
 enum Outcome {
@@ -273,7 +332,7 @@ enum Outcome {
     Keep,
     /// Partly hidden: its visible parts, in its group's coordinates, and —
     /// for a filled path — the visible part of the area it fills.
-    Cut(BezPath, Option<BezPath>),
+    Cut(BezPath, Option<VisibleFill>),
     /// Hidden entirely.
     Remove,
 }
@@ -411,8 +470,17 @@ fn envelope(r: Rect) -> AABB<[f64; 2]> {
     AABB::from_corners([r.x0, r.y0], [r.x1, r.y1])
 }
 
-/// The outcome of every painted path.
-fn hide(painted: &[Painted], occluders: &[Occluder], tolerance: f64) -> Vec<Outcome> {
+/// The outcome of every painted path. With `fills_to` (the map from the
+/// page to the drawable area) the visible part of every partly hidden fill
+/// is computed too, in drawable-area coordinates.
+fn hide(
+    painted: &[Painted],
+    occluders: &[Occluder],
+    fills_to: Option<Affine>,
+    tolerance: f64,
+) -> Vec<Outcome> {
+    let preview_fills = fills_to.is_some();
+    let drawable = fills_to.unwrap_or(Affine::IDENTITY);
     let tree = RTree::bulk_load(
         occluders
             .iter()
@@ -455,14 +523,17 @@ fn hide(painted: &[Painted], occluders: &[Occluder], tolerance: f64) -> Vec<Outc
                 clippers[k].get_or_init(|| StrokeClipper::new(&occluders[k].region, tolerance))
             });
             match visible_part(p, clippers, tolerance) {
-                Outcome::Cut(stroke, _) if p.filled => {
+                Outcome::Cut(stroke, _) if p.filled && preview_fills => {
                     let behind: Vec<Region> =
                         front.iter().map(|&k| occluders[k].region.clone()).collect();
                     let fill = Region::new(p.page.clone(), FillRule::NonZero)
                         .map(|r| r.difference_all(&behind))
                         .ok()
                         .filter(|r| !r.is_empty())
-                        .map(|r| p.to_page.inverse() * r.into_path());
+                        .map(|r| VisibleFill {
+                            paint,
+                            area: drawable * r.into_path(),
+                        });
                     Outcome::Cut(stroke, fill)
                 }
                 outcome => outcome,
@@ -507,29 +578,35 @@ fn visible_part<'a>(
     Outcome::Cut(p.to_page.inverse() * visible, None)
 }
 
-/// Applies the outcomes of the paths below `group`, in paint order.
-fn apply(group: &mut Group, outcomes: &mut impl Iterator<Item = Outcome>) {
+/// Applies the outcomes of the paths below `group`, in paint order; the
+/// visible fills go to `fills` with their paint order.
+fn apply(
+    group: &mut Group,
+    outcomes: &mut impl Iterator<Item = Outcome>,
+    fills: &mut Vec<(usize, StyledPath)>,
+) {
     let children = std::mem::take(&mut group.children);
     let mut kept = Vec::with_capacity(children.len());
     for child in children {
         match child {
             Node::Group(mut g) => {
-                apply(&mut g, outcomes);
+                apply(&mut g, outcomes, fills);
                 kept.push(Node::Group(g));
             }
             Node::Path(mut p) => match outcomes.next().unwrap_or(Outcome::Keep) {
                 Outcome::Keep => kept.push(Node::Path(p)),
                 Outcome::Cut(path, fill) => {
-                    if let (Some(area), Some(color)) = (fill, p.style.fill) {
-                        kept.push(Node::Path(StyledPath {
+                    if let (Some(f), Some(color)) = (fill, p.style.fill) {
+                        let path = StyledPath {
                             id: format!("{}{FILL_SUFFIX}", p.id),
-                            path: area,
+                            path: f.area,
                             style: Style {
                                 fill: Some(color),
                                 fill_only: true,
                                 ..Style::default()
                             },
-                        }));
+                        };
+                        fills.push((f.paint, path));
                     }
                     p.path = path;
                     p.style.fill = None;
