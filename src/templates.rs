@@ -15,48 +15,28 @@ pub struct Template {
 /// The template `moyo render` uses when no scene is given.
 pub const DEFAULT: &str = "kimono-1";
 
+/// `Template`s for files `templates/<name>.toml`.
+macro_rules! templates {
+    ($($name:literal),* $(,)?) => {
+        &[$(Template {
+            name: $name,
+            text: include_str!(concat!("../templates/", $name, ".toml")),
+        }),*]
+    };
+}
+
 /// Every template, in listing order.
-pub const ALL: &[Template] = &[
-    Template {
-        name: "kimono-1",
-        text: include_str!("../templates/kimono-1.toml"),
-    },
-    Template {
-        name: "kimono-2",
-        text: include_str!("../templates/kimono-2.toml"),
-    },
-    Template {
-        name: "kimono-3",
-        text: include_str!("../templates/kimono-3.toml"),
-    },
-    Template {
-        name: "kimono-4",
-        text: include_str!("../templates/kimono-4.toml"),
-    },
-    Template {
-        name: "kimono-5",
-        text: include_str!("../templates/kimono-5.toml"),
-    },
-    Template {
-        name: "kimono-6",
-        text: include_str!("../templates/kimono-6.toml"),
-    },
-    Template {
-        name: "kimono-7",
-        text: include_str!("../templates/kimono-7.toml"),
-    },
-    Template {
-        name: "kimono-8",
-        text: include_str!("../templates/kimono-8.toml"),
-    },
-    Template {
-        name: "tomesode-hem",
-        text: include_str!("../templates/tomesode-hem.toml"),
-    },
-    Template {
-        name: "tree-rules",
-        text: include_str!("../templates/tree-rules.toml"),
-    },
+pub const ALL: &[Template] = templates![
+    "kimono-1",
+    "kimono-2",
+    "kimono-3",
+    "kimono-4",
+    "kimono-5",
+    "kimono-6",
+    "kimono-7",
+    "kimono-8",
+    "tomesode-hem",
+    "tree-rules",
 ];
 
 impl Template {
