@@ -9,6 +9,10 @@ use serde::{Deserialize, Serialize};
 /// Millimetres per inch, for DPI conversions.
 pub const MM_PER_INCH: f64 = 25.4;
 
+/// Largest coordinate accepted anywhere, in mm (100 m): far beyond any
+/// plotter, small enough that nothing overflows.
+pub const MAX_COORD: f64 = 100_000.0;
+
 /// A named paper size.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum PaperName {

@@ -26,7 +26,7 @@ use kurbo::{BezPath, Point, Rect};
 use super::region::{path_from_shapes, Region};
 use super::TOLERANCE;
 use crate::error::{Error, Result};
-use crate::spec::MAX_COORD;
+use crate::units::MAX_COORD;
 
 /// Smallest angular step i_overlay accepts for round joins (it clamps to
 /// `0.01·π`): with it, arcs of radius above `8·tolerance / step²` (about

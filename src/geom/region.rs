@@ -34,7 +34,7 @@ use linesweeper::sweep::Correctness;
 use linesweeper::topology::{BinaryWindingNumber, Contours, OneOfTwo, Topology, WindingNumber};
 
 use crate::error::{Error, Result};
-use crate::spec::MAX_COORD;
+use crate::units::MAX_COORD;
 
 /// Accuracy of boolean operations in mm: the boundary of a result (and of a
 /// normalised region) lies within this distance of the exact boundary. It

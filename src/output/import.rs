@@ -88,7 +88,7 @@ use super::embedded_description;
 use crate::error::{Error, LineCol, Result};
 use crate::geom::region::{FillRule, Region};
 use crate::scene::{Color, Group, Layer, Pen, Scene, Style};
-use crate::spec::MAX_COORD;
+use crate::units::MAX_COORD;
 use crate::units::{Margins, Page, MM_PER_INCH};
 
 const SVG_NS: &str = "http://www.w3.org/2000/svg";

@@ -205,7 +205,7 @@ impl Default for OccludeOptions {
 /// [`Error::Invalid`] when the options are invalid (`occlude.tolerance`),
 /// when `skip_layers` names a layer the scene does not have
 /// (`occlude.skip_layers`), or when a path has a coordinate on the page
-/// that is not finite or lies beyond [`crate::spec::MAX_COORD`] (field
+/// that is not finite or lies beyond [`crate::units::MAX_COORD`] (field
 /// `occlude.paths[<id>]`). The scene is unchanged on error.
 pub fn run(scene: &mut Scene, o: &OccludeOptions) -> Result<()> {
     o.validate()?;

@@ -19,7 +19,6 @@ pub use flora::{
     JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MotifKind, MotifRef, PaintSpec,
 };
 pub use params::{ResolvedTreeParams, TreeParams};
-pub use validate::MAX_COORD;
 
 use serde::{Deserialize, Serialize};
 

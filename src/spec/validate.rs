@@ -9,10 +9,7 @@ use std::fmt::Display;
 use super::{LayerSpec, MarginSpec, PaperSize, SceneSpec, TreeSetSpec};
 use crate::error::{Error, Result};
 use crate::scene::Color;
-
-/// Largest coordinate accepted anywhere, in mm (100 m): far beyond any
-/// plotter, small enough that nothing overflows.
-pub const MAX_COORD: f64 = 100_000.0;
+use crate::units::MAX_COORD;
 
 /// `lo <= v <= hi`; NaN fails with the same message.
 pub(crate) fn range<T: PartialOrd + Display + Copy>(field: &str, v: T, lo: T, hi: T) -> Result<()> {

@@ -191,7 +191,7 @@ impl Grower<'_> {
     fn is_blocked(&self, p: Point) -> bool {
         // Far outside any page: stop, whatever the lines say, so lengths
         // growing with Ratio1 > 1 cannot run away.
-        let limit = crate::spec::MAX_COORD;
+        let limit = crate::units::MAX_COORD;
         !(p.x.abs() <= limit && p.y.abs() <= limit) || (self.blocked)(p)
     }
 
