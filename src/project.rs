@@ -10,155 +10,145 @@ use kurbo::BezPath;
 
 use crate::error::{Error, Result};
 use crate::motif::flora::{user_drawing, Library};
-use crate::motif::kimono::{self, Adjustments, FloraContext, Flow};
+use crate::motif::{self, Context, Flow};
 use crate::output::import::{import_svg, ImportOptions};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot;
-use crate::rng::Seed;
-use crate::scene::{Color, Group, Layer, PathBudget, Pen, Scene};
-use crate::spec::{MotifRef, SceneSpec};
+use crate::scene::{Color, Group, Layer, Pen, Scene};
+use crate::spec::{LayerSpec, MotifRef, ValidSpec};
 
-/// How far generation has come, for progress bars.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Progress {
-    /// Trees grown so far.
-    pub done: usize,
-    /// Trees in the scene.
-    pub total: usize,
-}
+pub use crate::motif::Progress;
 
-/// Every user motif a description names (`{ svg = "…" }`), in order of
-/// first appearance, without repeats.
-pub fn user_motif_files(spec: &SceneSpec) -> Vec<String> {
-    let mut refs: Vec<&MotifRef> = Vec::new();
-    for layer in &spec.layers {
-        for set in &layer.trees {
-            if let Some(f) = &set.flowers {
-                refs.extend(&f.motifs);
-            }
-            if let Some(r) = &set.leaves.ring {
-                refs.extend(&r.motifs);
-            }
-            if let Some(j) = &set.leaves.joints {
-                refs.extend(&j.motifs);
-            }
-        }
-        if let Some(bg) = &layer.background {
-            refs.push(&bg.stamp);
-            refs.extend(&bg.motifs);
-        }
-    }
-    refs.extend(spec.adjust.iter().filter_map(|a| a.motif.as_ref()));
-    let mut files: Vec<String> = Vec::new();
+/// Every user file a description names, in order of first appearance,
+/// without repeats: user motifs (`{ svg = "…" }`) and the SVG files of
+/// `[[layers.paths]]` tables.
+pub fn user_files(spec: &ValidSpec) -> UserFiles {
+    let mut files = UserFiles::default();
+    let items: Vec<_> = spec.layers.iter().flat_map(LayerSpec::items).collect();
+    let swaps = spec.adjust.iter().filter_map(|a| a.motif.as_ref());
+    let refs = items
+        .iter()
+        .flat_map(|i| i.table.family().motifs())
+        .chain(swaps);
     for r in refs {
         if let MotifRef::File(f) = r {
-            if !files.contains(&f.svg) {
-                files.push(f.svg.clone());
-            }
+            push_new(&mut files.motifs, &f.svg);
         }
+    }
+    for name in items.iter().flat_map(|i| i.table.family().path_files()) {
+        push_new(&mut files.paths, name);
     }
     files
 }
 
-/// Reads the user motifs of a description, their paths taken relative to
-/// `base` (the directory of the description file).
+/// The user files of a description (see [`user_files`]).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct UserFiles {
+    /// SVG files drawn as motifs.
+    pub motifs: Vec<String>,
+    /// SVG files whose paths are placed as they are.
+    pub paths: Vec<String>,
+}
+
+fn push_new(list: &mut Vec<String>, name: &str) {
+    if !list.iter().any(|n| n == name) {
+        list.push(name.to_string());
+    }
+}
+
+/// Reads the user files of a description into a library, their paths
+/// taken relative to `base` (the directory of the description file).
 ///
 /// # Errors
-/// [`Error::Motif`] naming the file: unreadable, not an SVG, or without a
-/// closed shape to serve as the motif's outline.
-pub fn load_motifs(spec: &SceneSpec, base: &Path) -> Result<Library> {
+/// [`Error::Motif`] naming the file: unreadable, not an SVG, or — for a
+/// motif — without a closed shape to serve as its outline. The reason is
+/// kept as the error's source.
+pub fn load_motifs(spec: &ValidSpec, base: &Path) -> Result<Library> {
     let mut library = Library::new();
-    for name in user_motif_files(spec) {
-        let path = base.join(&name);
-        let fail = |message: String| Error::Motif {
+    let files = user_files(spec);
+    for name in &files.motifs {
+        let (path, paths) = read_paths(base, name)?;
+        let drawing = user_drawing(&paths).map_err(|m| Error::Motif {
             name: name.clone(),
-            message,
-        };
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| fail(format!("cannot read {}: {e}", path.display())))?;
-        let imported = import_svg(&text, &ImportOptions::DEFAULT)
-            .map_err(|e| fail(format!("{}: {e}", path.display())))?;
-        let mut paths: Vec<BezPath> = Vec::new();
-        imported
-            .scene
-            .visit_paths(|_, p, t| paths.push(t * p.path.clone()));
-        let drawing = user_drawing(&paths).map_err(|m| fail(format!("{}: {m}", path.display())))?;
+            message: format!("{}: {m}", path.display()),
+        })?;
         library.add_user(name.clone(), drawing);
+    }
+    for name in &files.paths {
+        let (_, paths) = read_paths(base, name)?;
+        let mut joined = BezPath::new();
+        for p in paths {
+            joined.extend(p.elements().iter().copied());
+        }
+        library.add_paths(name.clone(), joined);
     }
     Ok(library)
 }
 
-/// Builds the scene of a validated description, reading user motifs
-/// relative to the current directory.
-pub fn build_scene(spec: &SceneSpec) -> Result<Scene> {
+/// The paths of the SVG file `name` (relative to `base`), in its mm.
+fn read_paths(base: &Path, name: &str) -> Result<(std::path::PathBuf, Vec<BezPath>)> {
+    let path = base.join(name);
+    let fail = |message: String| Error::Motif {
+        name: name.to_string(),
+        message,
+    };
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| fail(format!("cannot read {}: {e}", path.display())))?;
+    let imported = import_svg(&text, &ImportOptions::DEFAULT)
+        .map_err(|e| fail(format!("{}: {e}", path.display())))?;
+    let mut paths: Vec<BezPath> = Vec::new();
+    imported
+        .scene
+        .visit_paths(|_, p, t| paths.push(t * p.path.clone()));
+    Ok((path, paths))
+}
+
+/// Builds the scene of a description, reading user files relative to the
+/// current directory.
+///
+/// # Errors
+/// See [`build_scene_with_progress`].
+pub fn build_scene(spec: &ValidSpec) -> Result<Scene> {
     build_scene_with_progress(spec, &load_motifs(spec, Path::new("."))?, &mut |_| {})
 }
 
-/// [`build_scene`] with the motifs given, reporting progress after every
-/// tree.
+/// [`build_scene`] with the library given, reporting progress in work
+/// units of any family.
+///
+/// # Errors
+/// The path budget running out ([`Error::Budget`]), an `[[adjust]]` that
+/// matches nothing or does not fit what it matches ([`Error::Invalid`]
+/// with its line and column when the description came from TOML), a user
+/// file missing from the library ([`Error::Motif`]).
 pub fn build_scene_with_progress(
-    spec: &SceneSpec,
+    spec: &ValidSpec,
     library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Scene> {
-    let seed = Seed(spec.seed);
+    build(spec, library, progress).map_err(|e| spec.locate(e))
+}
+
+fn build(spec: &ValidSpec, library: &Library, progress: &mut dyn FnMut(Progress)) -> Result<Scene> {
     let flow = Flow::new(&spec.lines);
-    let mut budget = PathBudget::new(spec.limits.max_paths);
-    let mut adjust = Adjustments::new(&spec.adjust);
-    let total = spec
-        .layers
-        .iter()
-        .flat_map(|l| &l.trees)
-        .map(|s| s.count as usize)
-        .sum();
-    let mut done = 0;
     let ids = layer_ids(spec);
+    let mut cx = Context::new(spec, library, &flow, progress);
     let mut layers = Vec::with_capacity(spec.layers.len());
-    for (index, (layer, id)) in spec.layers.iter().zip(ids).enumerate() {
+    for (index, (layer, id)) in spec.layers.iter().zip(&ids).enumerate() {
         let depth = layer.depth.unwrap_or(index as i32);
-        let cx = FloraContext {
-            library,
-            seed,
-            depth,
-        };
+        cx.enter_layer((index, layer), id, depth);
         let mut content = Group::new(format!("{id}.motifs"));
-        if let Some(bg) = &layer.background {
-            let group = kimono::background::background(
-                bg,
-                &format!("{id}.background"),
-                &flow,
-                &cx,
-                &mut budget,
-            )?;
-            content.push_group(group);
-        }
-        for (k, set) in layer.trees.iter().enumerate() {
-            let set_id = format!("{id}.{}", kimono::set_id(set, k));
-            let mut tree_done = || {
-                done += 1;
-                progress(Progress { done, total });
-            };
-            let group = kimono::tree_set(
-                set,
-                &set_id,
-                &layer.limbs,
-                &flow,
-                &cx,
-                &mut adjust,
-                &mut budget,
-                &mut tree_done,
-            )?;
-            content.push_group(group);
+        for item in layer.items() {
+            content.push_group(motif::build(&item, &mut cx)?);
         }
         layers.push(Layer {
-            id,
+            id: id.clone(),
             name: layer.name.clone(),
             pen: layer.pen,
             depth,
             content,
         });
     }
-    adjust.finish()?;
+    cx.finish()?;
     let mut pens: Vec<Pen> = spec
         .pens
         .iter()
@@ -179,7 +169,7 @@ pub fn build_scene_with_progress(
 }
 
 /// Stable, unique, SVG-safe ids for the layers, made from their names.
-fn layer_ids(spec: &SceneSpec) -> Vec<String> {
+fn layer_ids(spec: &ValidSpec) -> Vec<String> {
     let mut ids: Vec<String> = Vec::new();
     for layer in &spec.layers {
         let mut slug: String = layer
@@ -208,7 +198,7 @@ fn layer_ids(spec: &SceneSpec) -> Vec<String> {
 }
 
 /// The SVG options a description asks for.
-pub fn svg_options(spec: &SceneSpec) -> SvgOptions {
+pub fn svg_options(spec: &ValidSpec) -> SvgOptions {
     SvgOptions::DEFAULT.with_precision(spec.output.precision)
 }
 
@@ -223,13 +213,13 @@ pub struct Rendered {
 
 /// Builds the scene, runs the plot stages the description asks for and
 /// writes its SVG; user motifs are read relative to the current directory.
-pub fn render(spec: &SceneSpec) -> Result<Rendered> {
+pub fn render(spec: &ValidSpec) -> Result<Rendered> {
     render_with_progress(spec, &load_motifs(spec, Path::new("."))?, &mut |_| {})
 }
 
 /// [`render`] with the motifs given and progress reports.
 pub fn render_with_progress(
-    spec: &SceneSpec,
+    spec: &ValidSpec,
     library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Rendered> {

@@ -1,7 +1,7 @@
 //! The ready scene descriptions in `templates/`, built into the binary.
 
 use crate::error::{Error, Result};
-use crate::spec::{Format, SceneSpec};
+use crate::spec::{Format, SceneSpec, ValidSpec};
 
 /// A built-in scene description.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -41,7 +41,7 @@ pub const ALL: &[Template] = templates![
 
 impl Template {
     /// The template's parsed description.
-    pub fn spec(&self) -> Result<SceneSpec> {
+    pub fn spec(&self) -> Result<ValidSpec> {
         SceneSpec::parse(self.text, Format::Toml)
     }
 
@@ -49,7 +49,7 @@ impl Template {
     pub fn summary(&self) -> String {
         self.spec()
             .ok()
-            .and_then(|s| s.description)
+            .and_then(|s| s.into_inner().description)
             .unwrap_or_default()
     }
 }

@@ -19,15 +19,18 @@ fn vpype_reads_one_layer_per_pen_with_every_path() {
     };
     let dir = tempfile::tempdir().unwrap();
     let svg = dir.path().join("hem.svg");
-    let mut spec = moyo::templates::get(moyo::templates::DEFAULT)
-        .unwrap()
-        .spec()
-        .unwrap();
     // vpype does not know AxiDraw's `%` layers: it would read the preview
     // fills into layer 1. Plotting through vpype means turning them off.
-    if let Some(o) = spec.plot.occlude.as_mut() {
-        o.preview_fills = false;
-    }
+    let spec = moyo::templates::get(moyo::templates::DEFAULT)
+        .unwrap()
+        .spec()
+        .unwrap()
+        .edit(|s| {
+            if let Some(o) = s.plot.occlude.as_mut() {
+                o.preview_fills = false;
+            }
+        })
+        .unwrap();
     let rendered = moyo::project::render(&spec).unwrap();
     std::fs::write(&svg, &rendered.svg).unwrap();
 

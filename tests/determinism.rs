@@ -9,7 +9,7 @@ use proptest::prelude::*;
 
 use moyo::output::embedded_description;
 use moyo::project::{self, Rendered};
-use moyo::spec::{Format, SceneSpec, TreeOverride, TreeParams};
+use moyo::spec::{Format, SceneSpec, TreeOverride, TreeParams, ValidSpec};
 use moyo::templates;
 
 /// A template without its plot stages: these tests are about generation
@@ -17,13 +17,15 @@ use moyo::templates;
 /// change in a front layer change what shows of the layers behind it.
 /// The CLI tests cover determinism of the full pipeline.
 fn template(name: &str) -> SceneSpec {
-    let mut spec = templates::get(name).unwrap().spec().unwrap();
+    let mut spec = templates::get(name).unwrap().spec().unwrap().into_inner();
     spec.plot = Default::default();
     spec
 }
 
+/// Validates and renders a description built or changed in code.
 fn render(spec: &SceneSpec) -> Rendered {
-    project::render(spec).unwrap_or_else(|e| panic!("{e}"))
+    let spec = spec.clone().validate().unwrap_or_else(|e| panic!("{e}"));
+    project::render(&spec).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Dump lines grouped by layer id, in order.
@@ -281,7 +283,7 @@ fn embedded_description_of_a_json_scene_parses_back() {
 }
 
 /// A small scene with arbitrary (valid) numbers.
-fn arbitrary_scene() -> impl Strategy<Value = SceneSpec> {
+fn arbitrary_scene() -> impl Strategy<Value = ValidSpec> {
     (
         0..=i64::MAX as u64,
         0u32..=8,

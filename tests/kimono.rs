@@ -26,7 +26,7 @@ use moyo::geom::offset::offset;
 use moyo::geom::region::{FillRule, Region};
 use moyo::motif::flora::{Drawing, Library};
 use moyo::project::{self, Rendered};
-use moyo::spec::{Format, MotifKind, MotifRef, SceneSpec};
+use moyo::spec::{Format, MotifKind, MotifRef, SceneSpec, ValidSpec};
 use moyo::{templates, Scene, Seed};
 
 // ------------------------------------------------------------- helpers
@@ -40,23 +40,23 @@ fn fixture(name: &str) -> String {
     fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-fn parse(text: &str) -> SceneSpec {
+fn parse(text: &str) -> ValidSpec {
     SceneSpec::parse(text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n---\n{text}"))
 }
 
 /// The motifs of `spec`, user motifs read from the fixtures.
-fn library(spec: &SceneSpec) -> Library {
+fn library(spec: &ValidSpec) -> Library {
     project::load_motifs(spec, &fixtures()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The scene before the plot stages.
-fn build(spec: &SceneSpec) -> Scene {
+fn build(spec: &ValidSpec) -> Scene {
     project::build_scene_with_progress(spec, &library(spec), &mut |_| {})
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The scene after the plot stages the description asks for.
-fn render(spec: &SceneSpec) -> Rendered {
+fn render(spec: &ValidSpec) -> Rendered {
     project::render_with_progress(spec, &library(spec), &mut |_| {})
         .unwrap_or_else(|e| panic!("{e}"))
 }
@@ -1182,7 +1182,7 @@ fn reopening_an_svg_gives_the_same_bytes_and_finds_user_motifs_next_to_it() {
 
 #[test]
 fn descriptions_survive_to_toml_and_back() {
-    let mut specs: Vec<(String, SceneSpec)> = templates::ALL
+    let mut specs: Vec<(String, ValidSpec)> = templates::ALL
         .iter()
         .map(|t| {
             (
@@ -1729,10 +1729,13 @@ fn partly_hidden_fills_keep_the_colour_of_their_visible_area() {
     assert!(rendered.svg.contains(";stroke:none\""));
     assert!(rendered.svg.contains("inkscape:label=\"%preview fills\""));
     // Without the option, the colour of cut shapes is simply gone.
-    let mut plain = spec.clone();
-    if let Some(o) = plain.plot.occlude.as_mut() {
-        o.preview_fills = false;
-    }
+    let plain = spec
+        .edit(|s| {
+            if let Some(o) = s.plot.occlude.as_mut() {
+                o.preview_fills = false;
+            }
+        })
+        .unwrap();
     assert!(!render(&plain).svg.contains("stroke:none"));
     // Pens have nothing to draw there: per-pen outputs and stats skip them.
     assert_eq!(rendered.scene.stats().paths, drawn);

@@ -9,3 +9,4 @@ mod kimono;
 mod plot_cli;
 mod readme;
 mod snapshots;
+mod valid_spec;

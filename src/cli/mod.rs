@@ -13,7 +13,7 @@ mod plot;
 
 use moyo::output::write_atomic;
 use moyo::project::{self, Progress};
-use moyo::spec::{Format, SceneSpec};
+use moyo::spec::{Format, SceneSpec, ValidSpec};
 use moyo::templates;
 
 /// moyo (模様): ornamental line art as layered, plottable SVG.
@@ -130,7 +130,7 @@ pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
 /// Loads the scene to render — a file, the description embedded in an SVG,
 /// a named template or the default — with the directory its user motifs
 /// are read from.
-fn load(args: &RenderArgs) -> Result<(SceneSpec, PathBuf), CliError> {
+fn load(args: &RenderArgs) -> Result<(ValidSpec, PathBuf), CliError> {
     let read = |path: &Path| {
         std::fs::read_to_string(path)
             .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))
@@ -165,15 +165,17 @@ fn load(args: &RenderArgs) -> Result<(SceneSpec, PathBuf), CliError> {
 }
 
 fn render(args: &RenderArgs) -> Result<(), CliError> {
-    let (mut spec, base) = load(args)?;
-    if let Some(seed) = args.seed {
-        spec.seed = seed;
-    }
-    if let Some(p) = args.precision {
-        spec.output.precision = p;
-    }
+    let (spec, base) = load(args)?;
     // The overrides go through the same validation as the file.
-    spec.validate()
+    let spec = spec
+        .edit(|s| {
+            if let Some(seed) = args.seed {
+                s.seed = seed;
+            }
+            if let Some(p) = args.precision {
+                s.output.precision = p;
+            }
+        })
         .map_err(|e| CliError::Message(format!("command line: {e}")))?;
 
     let bar = DelayedBar::new();
@@ -279,7 +281,7 @@ impl DelayedBar {
     fn new() -> DelayedBar {
         let bar = ProgressBar::hidden();
         bar.set_style(
-            ProgressStyle::with_template("{spinner} growing trees {pos}/{len} [{elapsed}]")
+            ProgressStyle::with_template("{spinner} generating {pos}/{len} [{elapsed}]")
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
         DelayedBar {

@@ -1,7 +1,49 @@
-//! Motif generators: each family in its own folder. Generators read a
-//! validated description and write [`crate::scene::Group`]s; they never
-//! write files.
+//! Motif generators: one folder per family, one seam.
+//!
+//! A layer's tables come from [`crate::spec::LayerSpec::items`]; [`build`]
+//! hands each to its family's generator with the shared [`Context`] (seed,
+//! library, flow, layer, budget, adjustments, progress) and gets back one
+//! [`Group`] with ids `<layer>.<item>…`. Generators read a validated
+//! description and write groups; they never read or write files.
+//!
+//! Families: [`kimono`] (tree sets with flowers and leaves, backgrounds),
+//! built on [`tree`] (the eight rules) and [`flora`] (vector motifs), and
+//! [`paths`] (user paths placed and repeated). docs/ARCHITECTURE.md says
+//! how to add one.
 
+pub mod adjust;
 pub mod flora;
 pub mod kimono;
+pub mod paths;
 pub mod tree;
+
+mod context;
+mod flow;
+
+pub use adjust::Adjustments;
+pub use context::{Context, Progress};
+pub use flow::{flow_line, Flow};
+
+use crate::error::Result;
+use crate::scene::Group;
+use crate::spec::{LayerItem, Table};
+
+/// Builds one table of the layer being built into a group with id
+/// `<layer>.<item id>`, and counts its declared work as done.
+///
+/// # Errors
+/// What the family's generator reports: the path budget running out, an
+/// adjustment that does not fit what it addresses, a user motif missing
+/// from the library.
+pub fn build(item: &LayerItem<'_>, cx: &mut Context<'_>) -> Result<Group> {
+    let id = format!("{}.{}", cx.layer_id(), item.id);
+    let done = cx.done() + item.table.family().work();
+    cx.enter_item(&item.field);
+    let group = match item.table {
+        Table::Background(t) => kimono::background::background(t, &id, cx),
+        Table::Trees(t) => kimono::tree_set(t, &id, cx),
+        Table::Paths(t) => paths::build(t, &id, cx),
+    }?;
+    cx.advance_to(done);
+    Ok(group)
+}

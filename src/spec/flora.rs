@@ -16,6 +16,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::layer::Family;
 use super::validate::{point, range};
 use super::{Growth, Points, TreeParams, TreeRule};
 use crate::error::{Error, Result};
@@ -229,7 +230,7 @@ impl PaintSpec {
         Some(c.shaded(self.brightness).over_white(self.opacity))
     }
 
-    fn check(&self, f: &str) -> Result<()> {
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
         if let Some(fill) = &self.fill {
             if Color::parse(fill).is_none() {
                 return Err(super::validate::bad_color(&format!("{f}.fill"), fill));
@@ -550,8 +551,10 @@ impl BackgroundSpec {
             TreeRule::Tree4
         })
     }
+}
 
-    pub(crate) fn check(&self, f: &str) -> Result<()> {
+impl Family for BackgroundSpec {
+    fn check(&self, f: &str) -> Result<()> {
         range(&format!("{f}.composite"), self.composite, 1, 4)?;
         range(&format!("{f}.count"), self.count, 0, 1000)?;
         super::validate::points(&format!("{f}.centre"), &self.centre, 2)?;
@@ -605,6 +608,15 @@ impl BackgroundSpec {
         }
         range(&format!("{f}.spacing"), self.spacing, 0.0, 500.0)?;
         self.paint.check(&format!("{f}.paint"))
+    }
+
+    /// One unit per hidden mask tree.
+    fn work(&self) -> usize {
+        self.count as usize
+    }
+
+    fn motifs(&self) -> Vec<&MotifRef> {
+        std::iter::once(&self.stamp).chain(&self.motifs).collect()
     }
 }
 

@@ -10,15 +10,23 @@
 //! allowed range, and — for TOML — the line and column of the value.
 
 mod flora;
+mod layer;
 mod locate;
 mod params;
+mod paths;
+mod trees;
+mod valid;
 mod validate;
 
 pub use flora::{
     AdjustSpec, Assign, BackgroundSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec,
     JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MotifKind, MotifRef, PaintSpec,
 };
+pub use layer::{Family, LayerItem, LayerSpec, Table};
 pub use params::{ResolvedTreeParams, TreeParams};
+pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
+pub use trees::{Growth, LimbSpec, LimbStyle, TreeOverride, TreeRule, TreeSetSpec};
+pub use valid::ValidSpec;
 
 use serde::{Deserialize, Serialize};
 
@@ -275,238 +283,36 @@ pub struct RegionLinesSpec {
     pub lower: Option<Points>,
 }
 
-/// One depth layer.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LayerSpec {
-    /// Unique name; the layer's id in the SVG is made from it.
-    pub name: String,
-    /// Pen number.
-    #[serde(default = "default_pen_number")]
-    pub pen: u32,
-    /// 0 is the front; larger is further back. Default: position in the list.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub depth: Option<i32>,
-    /// How tree limbs are drawn.
-    #[serde(default)]
-    pub limbs: LimbSpec,
-    /// Tree sets, each along its own centre line.
-    #[serde(default)]
-    pub trees: Vec<TreeSetSpec>,
-    /// A background pattern composited into a mask (SPEC §1.6).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub background: Option<BackgroundSpec>,
-}
-
-fn default_pen_number() -> u32 {
-    1
-}
-
-/// How limbs become paths (SPEC §1.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum LimbStyle {
-    /// A closed outline whose width tapers from `width` to `tip_width`.
-    #[default]
-    Outline,
-    /// A single centre stroke, for one-pass plotting.
-    Stroke,
-}
-
-/// Limb drawing settings of a layer.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LimbSpec {
-    /// `outline` or `stroke`.
-    #[serde(default)]
-    pub style: LimbStyle,
-    /// Trunk width at the root in mm (0.05–50); branches start at the
-    /// width of their parent where they leave it.
-    #[serde(default = "default_limb_width")]
-    pub width: f64,
-    /// Width at every tip in mm (0–50).
-    #[serde(default = "default_tip_width")]
-    pub tip_width: f64,
-    /// Sideways bow of two-point limbs as a fraction of their length
-    /// (−1 – 1); positive bows towards the branch's own side.
-    #[serde(default = "default_bow")]
-    pub bow: f64,
-    /// Fill colour for outlines (default: none, outline only).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub fill: Option<String>,
-}
-
-impl Default for LimbSpec {
-    fn default() -> Self {
-        LimbSpec {
-            style: LimbStyle::default(),
-            width: default_limb_width(),
-            tip_width: default_tip_width(),
-            bow: default_bow(),
-            fill: None,
-        }
-    }
-}
-
-fn default_limb_width() -> f64 {
-    2.4
-}
-
-fn default_tip_width() -> f64 {
-    0.3
-}
-
-fn default_bow() -> f64 {
-    0.08
-}
-
-/// The eight tree rules of SPEC §1.2.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum TreeRule {
-    /// Trunk with alternating complex branches (TreeSub depth 3).
-    Tree1,
-    /// Trunk with alternating simple branches.
-    Tree2,
-    /// Branches on both sides, pattern by generation mod 3.
-    Tree3,
-    /// Branches that fork in three at their end.
-    Tree4,
-    /// Branches on the left only, each as deep as the generations left.
-    Tree5,
-    /// Two root branches, then a Tree2 trunk.
-    Tree6,
-    /// Splits at the root into two Tree2 trunks.
-    Tree7,
-    /// Spray along a 4-point base curve (not recursive).
-    Tree8,
-}
-
-impl TreeRule {
-    /// All rules in order.
-    pub const ALL: [TreeRule; 8] = [
-        TreeRule::Tree1,
-        TreeRule::Tree2,
-        TreeRule::Tree3,
-        TreeRule::Tree4,
-        TreeRule::Tree5,
-        TreeRule::Tree6,
-        TreeRule::Tree7,
-        TreeRule::Tree8,
-    ];
-}
-
-/// How trees stand on their centre line (SPEC §1.4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Growth {
-    /// Perpendicular to the centre line, on its upper side.
-    #[default]
-    Perpendicular,
-    /// Along the centre line, in its drawing direction.
-    Parallel,
-}
-
-/// A set of trees of one rule along one centre line.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TreeSetSpec {
-    /// Id of the set, unique in its layer (default `trees-K`, K its index).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub id: Option<String>,
-    /// Which of Tree1–Tree8.
-    pub rule: TreeRule,
-    /// Number of trees (0–10,000), at even arc-length spacing.
-    #[serde(default = "default_count")]
-    pub count: u32,
-    /// The centre line (中心線) of this set: ≥ 2 control points in mm.
-    pub centre: Points,
-    /// Perpendicular to or along the centre line.
-    #[serde(default)]
-    pub growth: Growth,
-    /// Extra rotation of every tree in degrees, clockwise (180 grows
-    /// downward from a perpendicular line).
-    #[serde(default)]
-    pub rotate: f64,
-    /// Rule parameters.
-    #[serde(default)]
-    pub params: TreeParams,
-    /// Per-tree adjustments by id (`tree-0`, `tree-1`, …).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub overrides: Vec<TreeOverride>,
-    /// Flowers at the trees' vertices.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub flowers: Option<FlowerSpec>,
-    /// Leaves around the flowers and at the branch joints.
-    #[serde(default, skip_serializing_if = "LeavesSpec::is_empty")]
-    pub leaves: LeavesSpec,
-}
-
-fn default_count() -> u32 {
-    1
-}
-
-/// Final adjustment of one tree (SPEC §1.4).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TreeOverride {
-    /// The tree's id within its set: `tree-N`.
-    pub id: String,
-    /// Move the root here (mm).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub root: Option<[f64; 2]>,
-    /// Rotate the growth direction by this many degrees, clockwise.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub rotate: Option<f64>,
-    /// Scale lengths and widths (0.01–100).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub scale: Option<f64>,
-    /// Parameters that replace the set's for this tree.
-    #[serde(default, skip_serializing_if = "TreeParams::is_empty")]
-    pub params: TreeParams,
-}
-
 impl SceneSpec {
-    /// Parses and validates a description.
-    pub fn parse(text: &str, format: Format) -> Result<SceneSpec> {
-        let spec: SceneSpec = match format {
-            Format::Toml => parse_toml(text)?,
-            Format::Json => parse_json(text)?,
-        };
-        spec.validate().map_err(|e| match (e, format) {
-            (
-                Error::Invalid {
-                    at: None,
-                    field,
-                    message,
-                },
-                Format::Toml,
-            ) => Error::Invalid {
-                at: locate::toml_field(text, &field),
-                field,
-                message,
-            },
-            (e, _) => e,
-        })?;
-        Ok(spec)
+    /// Parses and validates a description: the same as
+    /// [`ValidSpec::parse`].
+    ///
+    /// # Errors
+    /// As [`ValidSpec::parse`].
+    pub fn parse(text: &str, format: Format) -> Result<ValidSpec> {
+        ValidSpec::parse(text, format)
     }
 
-    /// Checks every range and reference (see the module docs).
-    pub fn validate(&self) -> Result<()> {
-        validate::scene(self)
-    }
-
-    /// Writes the description as TOML. Parsing the result gives back an
-    /// equal value.
-    pub fn to_toml(&self) -> String {
-        // Serialising plain data structs cannot fail; a failure would be a
-        // bug in these types, so it is reported loudly.
-        toml::to_string(self).expect("scene description serialises to TOML")
+    /// Checks every range and reference (see the module docs) and gives
+    /// the description back as a [`ValidSpec`].
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] naming the first field that is wrong.
+    pub fn validate(self) -> Result<ValidSpec> {
+        ValidSpec::new(self)
     }
 
     /// The resolved page.
     pub fn page(&self) -> Page {
         self.page.page()
+    }
+}
+
+/// The description in `text`, not yet validated.
+fn parse_text(text: &str, format: Format) -> Result<SceneSpec> {
+    match format {
+        Format::Toml => parse_toml(text),
+        Format::Json => parse_json(text),
     }
 }
 

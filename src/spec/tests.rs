@@ -16,7 +16,7 @@ centre = [[10, 100], [150, 120]]
 generations = 5
 "#;
 
-fn parse(text: &str) -> Result<SceneSpec> {
+fn parse(text: &str) -> Result<ValidSpec> {
     SceneSpec::parse(text, Format::Toml)
 }
 
@@ -36,7 +36,7 @@ fn round_trips_through_toml_and_json() {
     let s = parse(MINIMAL).unwrap();
     let again = parse(&s.to_toml()).unwrap();
     assert_eq!(s, again);
-    let json = serde_json::to_string(&s).unwrap();
+    let json = serde_json::to_string(s.spec()).unwrap();
     assert_eq!(SceneSpec::parse(&json, Format::Json).unwrap(), s);
 }
 

@@ -6,7 +6,7 @@
 use std::collections::BTreeSet;
 use std::fmt::Display;
 
-use super::{LayerSpec, MarginSpec, PaperSize, SceneSpec, TreeSetSpec};
+use super::{LayerSpec, MarginSpec, PaperSize, SceneSpec};
 use crate::error::{Error, Result};
 use crate::scene::Color;
 use crate::units::MAX_COORD;
@@ -235,68 +235,16 @@ fn layer(f: &str, layer: &LayerSpec, pens: &BTreeSet<u32>) -> Result<()> {
         }
     }
     let mut ids = BTreeSet::new();
-    for (k, set) in layer.trees.iter().enumerate() {
-        let sf = format!("{f}.trees[{k}]");
-        let set_id = set.id.clone().unwrap_or_else(|| format!("trees-{k}"));
-        if let Some(given) = &set.id {
-            id(&format!("{sf}.id"), given)?;
-        }
-        if !ids.insert(set_id.clone()) {
+    for item in layer.items() {
+        let field = format!("{f}.{}", item.field);
+        id(&format!("{field}.id"), &item.id)?;
+        if !ids.insert(item.id.clone()) {
             return Err(Error::invalid(
-                format!("{sf}.id"),
-                format!("tree set id '{set_id}' is used twice in this layer"),
+                format!("{field}.id"),
+                format!("id '{}' is used twice in this layer", item.id),
             ));
         }
-        tree_set(&sf, set)?;
-    }
-    if let Some(bg) = &layer.background {
-        bg.check(&format!("{f}.background"))?;
+        item.table.family().check(&field)?;
     }
     Ok(())
-}
-
-fn tree_set(f: &str, set: &TreeSetSpec) -> Result<()> {
-    range(&format!("{f}.count"), set.count, 0, 10_000)?;
-    points(&format!("{f}.centre"), &set.centre, 2)?;
-    range(&format!("{f}.rotate"), set.rotate, -360.0, 360.0)?;
-    set.params.check(&format!("{f}.params"))?;
-    let mut seen = BTreeSet::new();
-    for (j, o) in set.overrides.iter().enumerate() {
-        let of = format!("{f}.overrides[{j}]");
-        let index =
-            o.id.strip_prefix("tree-")
-                .and_then(|n| n.parse::<u32>().ok())
-                .filter(|n| *n < set.count && o.id == format!("tree-{n}"));
-        if index.is_none() {
-            let hint = match set.count {
-                0 => "this set has no trees".to_string(),
-                1 => "the only tree is tree-0".to_string(),
-                n => format!("trees are tree-0 … tree-{}", n - 1),
-            };
-            return Err(Error::invalid(
-                format!("{of}.id"),
-                format!("'{}' matches no tree ({hint})", o.id),
-            ));
-        }
-        if !seen.insert(o.id.as_str()) {
-            return Err(Error::invalid(
-                format!("{of}.id"),
-                format!("'{}' is overridden twice", o.id),
-            ));
-        }
-        if let Some(p) = o.root {
-            point(&format!("{of}.root"), p)?;
-        }
-        if let Some(r) = o.rotate {
-            range(&format!("{of}.rotate"), r, -360.0, 360.0)?;
-        }
-        if let Some(s) = o.scale {
-            range(&format!("{of}.scale"), s, 0.01, 100.0)?;
-        }
-        o.params.check(&format!("{of}.params"))?;
-    }
-    if let Some(fl) = &set.flowers {
-        fl.check(&format!("{f}.flowers"))?;
-    }
-    set.leaves.check(&format!("{f}.leaves"))
 }

@@ -25,8 +25,8 @@ mod flowers;
 mod leaves;
 mod tiles;
 
-use std::cell::RefCell;
 use std::collections::BTreeMap;
+use std::sync::{Arc, RwLock};
 
 use kurbo::{Affine, BezPath, PathEl, Point, Shape};
 
@@ -96,16 +96,32 @@ pub fn draw(kind: MotifKind, params: &MotifParams, rng: &mut RandomStream) -> Dr
     d.normalised()
 }
 
-/// The motifs a scene can draw: the built-ins, and the user motifs its
-/// caller loaded (generators never read files).
+/// The motifs and paths a scene can draw: the built-in motifs, and the
+/// user motifs and path files its caller loaded (generators never read
+/// files).
 ///
 /// A motif without jitter is the same drawing every time, so it is drawn
 /// once and reused (drawing a many-petalled flower takes a union of its
-/// petals: far more work than placing it).
-#[derive(Debug, Clone, Default)]
+/// petals: far more work than placing it). The cache sits behind a lock,
+/// so one library serves generators on several threads.
+#[derive(Debug, Default)]
 pub struct Library {
     user: BTreeMap<String, Drawing>,
-    plain: RefCell<BTreeMap<(MotifKind, Option<u32>), Drawing>>,
+    paths: BTreeMap<String, BezPath>,
+    plain: RwLock<Plain>,
+}
+
+/// Drawings without jitter, by kind and petal count.
+type Plain = BTreeMap<(MotifKind, Option<u32>), Arc<Drawing>>;
+
+impl Clone for Library {
+    fn clone(&self) -> Library {
+        Library {
+            user: self.user.clone(),
+            paths: self.paths.clone(),
+            plain: RwLock::new(self.cached().clone()),
+        }
+    }
 }
 
 impl Library {
@@ -118,6 +134,23 @@ impl Library {
     /// `svg` of a [`MotifRef::File`]).
     pub fn add_user(&mut self, name: impl Into<String>, drawing: Drawing) {
         self.user.insert(name.into(), drawing);
+    }
+
+    /// Adds the paths of a file under the name the description uses for
+    /// it (the `svg` of a `[[layers.paths]]` table), in the file's mm.
+    pub fn add_paths(&mut self, name: impl Into<String>, paths: BezPath) {
+        self.paths.insert(name.into(), paths);
+    }
+
+    /// The paths loaded under `name`.
+    ///
+    /// # Errors
+    /// [`Error::Motif`] when no file of that name was loaded.
+    pub fn paths(&self, name: &str) -> Result<&BezPath> {
+        self.paths.get(name).ok_or_else(|| Error::Motif {
+            name: name.to_string(),
+            message: "was not loaded (path files are read by the caller of the generator)".into(),
+        })
     }
 
     /// Draws the motif a description names. `rng` is used for jitter only.
@@ -146,12 +179,26 @@ impl Library {
             return Ok(draw(kind, &params, rng));
         }
         let key = (kind, params.petals);
-        if let Some(d) = self.plain.borrow().get(&key) {
-            return Ok(d.clone());
+        if let Some(d) = self.cached().get(&key) {
+            return Ok(Drawing::clone(d));
         }
-        let d = draw(kind, &params, rng);
-        self.plain.borrow_mut().insert(key, d.clone());
-        Ok(d)
+        // Two threads may both draw a missing motif; they draw the same
+        // thing, so whichever is stored last is as good as the first.
+        let d = Arc::new(draw(kind, &params, rng));
+        self.plain
+            .write()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .insert(key, Arc::clone(&d));
+        Ok(Drawing::clone(&d))
+    }
+
+    /// The cache of plain drawings. A panic elsewhere while the lock was
+    /// held cannot leave a half-written drawing (entries are inserted
+    /// whole), so a poisoned lock is still read.
+    fn cached(&self) -> std::sync::RwLockReadGuard<'_, Plain> {
+        self.plain
+            .read()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 }
 

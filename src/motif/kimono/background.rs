@@ -32,14 +32,15 @@
 
 use kurbo::{Affine, BezPath, Point, Rect, Shape};
 
-use super::{placements, FloraContext, Flow};
+use super::placements;
 use crate::error::Result;
 use crate::geom::clip::StrokeClipper;
 use crate::geom::region::{FillRule, Region};
 use crate::geom::TOLERANCE;
 use crate::motif::flora::Drawing;
 use crate::motif::tree::{self, Growth};
-use crate::scene::{Color, Group, PathBudget, Style};
+use crate::motif::Context;
+use crate::scene::{Color, Group, Style};
 use crate::spec::{BackgroundSpec, LeavesSpec, PaintSpec, TreeSetSpec};
 
 /// Grey of a solid pattern when the description gives no paint.
@@ -53,17 +54,11 @@ const SOLID_HATCH: f64 = 1.0;
 const MAX_RANDOM_TILES: usize = 100_000;
 
 /// The background of a layer, as a group `group_id`.
-pub fn background(
-    bg: &BackgroundSpec,
-    group_id: &str,
-    flow: &Flow,
-    cx: &FloraContext<'_>,
-    budget: &mut PathBudget,
-) -> Result<Group> {
+pub fn background(bg: &BackgroundSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let mut group = Group::new(group_id);
-    let stamps = stamp_sites(bg, group_id, flow, cx, budget)?;
-    let mut rng = cx.seed.derive(&format!("{group_id}.stamp")).stream();
-    let stamp = cx.library.draw(&bg.stamp, &mut rng)?;
+    let stamps = stamp_sites(bg, group_id, cx)?;
+    let mut rng = cx.stream(&format!("{group_id}.stamp"));
+    let stamp = cx.library().draw(&bg.stamp, &mut rng)?;
     let stamp_boxes: Vec<Affine> = stamps
         .iter()
         .map(|p| Affine::translate(p.to_vec2()) * unit_to(&stamp, bg.stamp_width, bg.stamp_height))
@@ -83,27 +78,28 @@ pub fn background(
         paint_style(&bg.paint)
     };
     if bg.outline || base.fill.is_some() {
-        budget.take(1, || format!("background {group_id}"))?;
+        cx.take_paths(1, || format!("background {group_id}"))?;
         group.push_path(format!("{group_id}.mask"), mask.path().clone(), base);
     }
 
     let clipper = StrokeClipper::new(&mask, TOLERANCE);
-    let mut tiles = Tiles {
-        group: &mut group,
-        clipper: &clipper,
-        budget,
-        id: group_id,
-        n: 0,
-    };
     let motifs: Vec<Drawing> = bg
         .motifs
         .iter()
         .enumerate()
         .map(|(i, m)| {
-            let mut rng = cx.seed.derive(&format!("{group_id}.motif-{i}")).stream();
-            cx.library.draw(m, &mut rng)
+            let mut rng = cx.stream(&format!("{group_id}.motif-{i}"));
+            cx.library().draw(m, &mut rng)
         })
         .collect::<Result<_>>()?;
+    let mut scatter = cx.stream(&format!("{group_id}.scatter"));
+    let mut tiles = Tiles {
+        group: &mut group,
+        clipper: &clipper,
+        cx,
+        id: group_id,
+        n: 0,
+    };
     let bounds = mask.bounds();
     match bg.pattern {
         2 | 3 => {
@@ -112,6 +108,11 @@ pub fn background(
             let w = bg.width;
             let h = bg.height.unwrap_or(w * motifs[0].aspect);
             let (cols, rows) = grid(bounds, w + gap, h + gap);
+            // Every cell is tried and clipped, drawn or not: the grid is
+            // work the budget has to allow before it starts.
+            tiles.cx.take_paths(cols.saturating_mul(rows), || {
+                format!("background {group_id}: a grid of {cols} × {rows} tiles")
+            })?;
             for row in 0..rows {
                 for col in 0..cols {
                     let d = &motifs[(row + col) % motifs.len()];
@@ -128,10 +129,13 @@ pub fn background(
             }
         }
         4 => {
-            let mut rng = cx.seed.derive(&format!("{group_id}.scatter")).stream();
+            let rng = &mut scatter;
             let w = bg.width;
             let cell = (w + bg.spacing).powi(2);
             let wanted = ((mask.area() / cell).ceil() as usize).min(MAX_RANDOM_TILES);
+            tiles.cx.take_paths(wanted, || {
+                format!("background {group_id}: {wanted} scattered tiles")
+            })?;
             let mut placed = 0;
             for _ in 0..wanted * 20 {
                 if placed == wanted {
@@ -157,6 +161,9 @@ pub fn background(
             }
         }
         5 => {
+            tiles.cx.take_paths(stamp_boxes.len(), || {
+                format!("background {group_id}: tiles")
+            })?;
             for m in &stamp_boxes {
                 let d = &motifs[0];
                 let fit = *m
@@ -194,16 +201,17 @@ fn grid(bounds: Rect, cw: f64, ch: f64) -> (usize, usize) {
     (cols, rows)
 }
 
-/// Tiles clipped to the mask, appended to the group.
-struct Tiles<'a, 'b> {
+/// Tiles clipped to the mask, appended to the group. The pattern takes
+/// its tiles from the budget before it places them.
+struct Tiles<'a, 'b, 'c> {
     group: &'a mut Group,
     clipper: &'a StrokeClipper,
-    budget: &'a mut PathBudget,
+    cx: &'a mut Context<'c>,
     id: &'b str,
     n: usize,
 }
 
-impl Tiles<'_, '_> {
+impl Tiles<'_, '_, '_> {
     fn push(&mut self, d: &Drawing, m: Affine) -> Result<()> {
         let path = d.to_path(m);
         let inside = self.clipper.clip(&path).inside;
@@ -216,7 +224,6 @@ impl Tiles<'_, '_> {
         }
         let id = format!("{}.tile-{}", self.id, self.n);
         self.n += 1;
-        self.budget.take(1, || format!("background tile {id}"))?;
         self.group.push_path(id, joined, Style::default());
         Ok(())
     }
@@ -241,13 +248,7 @@ fn solid_style(paint: &PaintSpec) -> Style {
 }
 
 /// The vertices that get a stamp, from the hidden mask trees.
-fn stamp_sites(
-    bg: &BackgroundSpec,
-    group_id: &str,
-    flow: &Flow,
-    cx: &FloraContext<'_>,
-    budget: &mut PathBudget,
-) -> Result<Vec<Point>> {
+fn stamp_sites(bg: &BackgroundSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Vec<Point>> {
     let circles: Vec<(Point, f64)> = bg
         .circles
         .iter()
@@ -273,9 +274,11 @@ fn stamp_sites(
     for (i, place) in placements(&set).into_iter().enumerate() {
         for (way, direction) in [("up", place.direction), ("down", -place.direction)] {
             let downward = direction.y > 0.0;
+            let flow = cx.flow();
             let blocked =
                 |q: Point| flow.blocks(q, downward) || (bg.composite == 2 && !in_circles(q));
             let id = format!("{group_id}.mask-{i}.{way}");
+            let stream = cx.stream(&id);
             let skeleton = tree::grow(
                 set.rule,
                 &params,
@@ -284,8 +287,8 @@ fn stamp_sites(
                     direction,
                     blocked: &blocked,
                 },
-                cx.seed.derive(&id).stream(),
-                budget,
+                stream,
+                cx.budget(),
                 &format!("background tree {id}"),
             )?;
             sites.extend(
@@ -294,6 +297,7 @@ fn stamp_sites(
                     .filter(|p| !matches!(bg.composite, 2 | 4) || in_circles(*p)),
             );
         }
+        cx.advance(1);
     }
     sites.dedup();
     Ok(sites)

@@ -26,26 +26,18 @@
 
 use kurbo::{Affine, Point, Vec2};
 
-use super::adjust::{about, Adjustments};
+use super::GrownTree;
 use crate::error::Result;
 use crate::geom::Side;
-use crate::motif::flora::{Drawing, Library};
+use crate::motif::adjust::about;
+use crate::motif::flora::Drawing;
 use crate::motif::tree::Skeleton;
-use crate::rng::{RandomStream, Seed};
-use crate::scene::{Group, PathBudget, Style};
+use crate::motif::Context;
+use crate::rng::RandomStream;
+use crate::scene::{Group, Style};
 use crate::spec::{
     AdjustSpec, Assign, FlowerSites, FlowerSpec, MainLargest, MotifRef, PaintSpec, TreeSetSpec,
 };
-
-/// What the flowers and leaves of a tree need besides its set.
-pub struct FloraContext<'a> {
-    /// Built-in and loaded user motifs.
-    pub library: &'a Library,
-    /// The scene seed.
-    pub seed: Seed,
-    /// Depth of the layer (0 front), for `main_largest = "depth"`.
-    pub depth: i32,
-}
 
 /// One tree's leaves and flowers, as two groups `<tree>.leaves` and
 /// `<tree>.flowers` (leaves painted first, so flowers are in front).
@@ -129,35 +121,33 @@ struct Put<'a> {
 fn put(
     group: &mut Group,
     item: Put<'_>,
-    cx: &FloraContext<'_>,
+    cx: &mut Context<'_>,
     rng: &mut RandomStream,
-    budget: &mut PathBudget,
     place: impl Fn(&Drawing) -> Affine,
 ) -> Result<()> {
     let motif = item
         .adjust
         .and_then(|a| a.motif.as_ref())
         .unwrap_or(item.motif);
-    let d = cx.library.draw(motif, rng)?;
-    budget.take(1, || format!("motif {}", item.id))?;
+    let d = cx.library().draw(motif, rng)?;
+    cx.take_paths(1, || format!("motif {}", item.id))?;
     group.push_path(item.id, d.to_path(place(&d)), style(item.paint));
     Ok(())
 }
 
-/// Flowers and leaves of tree `k` of `set` (id `tree_id`), grown as
-/// `skeleton` with its placement `scale`. `None` when the set has
+/// Flowers and leaves of a grown tree of `set`. `None` when the set has
 /// neither.
-#[allow(clippy::too_many_arguments)]
 pub fn tree_flora(
     set: &TreeSetSpec,
-    skeleton: &Skeleton,
-    k: usize,
-    tree_id: &str,
-    scale: f64,
-    cx: &FloraContext<'_>,
-    adjust: &mut Adjustments<'_>,
-    budget: &mut PathBudget,
+    tree: &GrownTree<'_>,
+    cx: &mut Context<'_>,
 ) -> Result<Option<TreeFlora>> {
+    let GrownTree {
+        skeleton,
+        index: k,
+        id: tree_id,
+        scale,
+    } = *tree;
     if set.flowers.is_none() && set.leaves.is_empty() {
         return Ok(None);
     }
@@ -170,7 +160,7 @@ pub fn tree_flora(
         let joints = skeleton.limbs.iter().filter(|l| l.parent.is_some());
         for (n, limb) in joints.enumerate() {
             let id = format!("{tree_id}.joint-{n}");
-            let a = adjust.take(&id);
+            let a = cx.adjust().take(&id);
             if a.is_some_and(|a| a.hide) {
                 continue;
             }
@@ -185,14 +175,14 @@ pub fn tree_flora(
                 Some(Side::Right) => j.angle,
                 None => 0.0,
             };
-            let mut rng = cx.seed.derive(&id).stream();
+            let mut rng = cx.stream(&id);
             let item = Put {
                 id,
                 motif,
                 adjust: a,
                 paint: &j.paint,
             };
-            put(&mut leaves, item, cx, &mut rng, budget, |d| {
+            put(&mut leaves, item, cx, &mut rng, |d| {
                 about(a, base)
                     * Affine::translate(base.to_vec2())
                     * Affine::rotate(angle_from_up(dir) + lean.to_radians())
@@ -207,10 +197,10 @@ pub fn tree_flora(
     let sites = flower_sites(skeleton, f.at);
     for (i, site) in sites.iter().enumerate() {
         let id = format!("{tree_id}.flower-{i}");
-        let a = adjust.take(&id);
+        let a = cx.adjust().take(&id);
         let hidden = a.is_some_and(|a| a.hide);
-        let factor = scale * size_factor(f, i, sites.len(), cx.depth);
-        let mut rng = cx.seed.derive(&id).stream();
+        let factor = scale * size_factor(f, i, sites.len(), cx.depth());
+        let mut rng = cx.stream(&id);
         let turn = rng.symmetric(f.turn).to_radians();
         let flower_map = about(a, *site) * Affine::translate(site.to_vec2()) * Affine::rotate(turn);
 
@@ -218,21 +208,21 @@ pub fn tree_flora(
             let motif = leaf_motif(&ring.motifs, assign, k);
             for j in 0..ring.count {
                 let leaf_id = format!("{id}.leaf-{j}");
-                let la = adjust.take(&leaf_id);
+                let la = cx.adjust().take(&leaf_id);
                 if hidden || la.is_some_and(|a| a.hide) {
                     continue;
                 }
                 let theta = (360.0 * f64::from(j) / f64::from(ring.count)).to_radians();
                 let out = Vec2::new(theta.sin(), -theta.cos());
                 let stem = flower_map * (out * ring.spacing * factor).to_point();
-                let mut leaf_rng = cx.seed.derive(&leaf_id).stream();
+                let mut leaf_rng = cx.stream(&leaf_id);
                 let item = Put {
                     id: leaf_id,
                     motif,
                     adjust: la,
                     paint: &ring.paint,
                 };
-                put(&mut leaves, item, cx, &mut leaf_rng, budget, |d| {
+                put(&mut leaves, item, cx, &mut leaf_rng, |d| {
                     about(la, stem)
                         * flower_map
                         * Affine::translate(out * ring.spacing * factor)
@@ -251,7 +241,7 @@ pub fn tree_flora(
             adjust: a,
             paint: &f.paint,
         };
-        put(&mut flowers, item, cx, &mut rng, budget, |d| {
+        put(&mut flowers, item, cx, &mut rng, |d| {
             flower_map * sized(d, f.width * factor, f.height.map(|h| h * factor))
         })?;
     }

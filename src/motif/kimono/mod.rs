@@ -8,62 +8,17 @@
 //! its set, and per-tree overrides (root, rotate, scale, parameters) are
 //! addressed by that id.
 
-pub mod adjust;
 pub mod background;
 pub mod bloom;
 
-use kurbo::{BezPath, Point, Vec2};
+use kurbo::{Point, Vec2};
 
-pub use adjust::Adjustments;
-pub use bloom::FloraContext;
-
+use super::{flow_line, Context};
 use crate::error::Result;
-use crate::geom::{natural_spline, PathWalker, Side, SideTest, TOLERANCE};
-use crate::motif::tree::{self, Growth, LimbLook};
-use crate::scene::{Color, Group, PathBudget, Style};
-use crate::spec::{
-    Growth as Orientation, LimbSpec, Points, RegionLinesSpec, TreeOverride, TreeSetSpec,
-};
-
-/// The overall flow: what stops trees from growing.
-pub struct Flow {
-    upper: Option<SideTest>,
-    lower: Option<SideTest>,
-}
-
-/// Natural spline through control points given as `[x, y]` pairs.
-pub fn flow_line(points: &Points) -> BezPath {
-    let pts: Vec<Point> = points.iter().map(|[x, y]| Point::new(*x, *y)).collect();
-    natural_spline(&pts)
-}
-
-/// A region line as a far-side test. The line is taken left to right (its
-/// points are reversed when the last lies left of the first), so the far
-/// side of the upper line is above it and that of the lower line below.
-fn region_test(points: &Points, far: Side) -> SideTest {
-    let mut pts = points.clone();
-    if pts[pts.len() - 1][0] < pts[0][0] {
-        pts.reverse();
-    }
-    SideTest::new(&flow_line(&pts), far)
-}
-
-impl Flow {
-    /// The flow of a scene description's `[lines]`.
-    pub fn new(lines: &RegionLinesSpec) -> Flow {
-        Flow {
-            upper: lines.upper.as_ref().map(|p| region_test(p, Side::Left)),
-            lower: lines.lower.as_ref().map(|p| region_test(p, Side::Right)),
-        }
-    }
-
-    /// True when `p` may not be part of a tree: beyond the upper line, or —
-    /// for a tree growing downward — beyond the lower line.
-    pub fn blocks(&self, p: Point, downward: bool) -> bool {
-        self.upper.as_ref().is_some_and(|t| t.is_beyond(p))
-            || (downward && self.lower.as_ref().is_some_and(|t| t.is_beyond(p)))
-    }
-}
+use crate::geom::{PathWalker, Side, TOLERANCE};
+use crate::motif::tree::{self, Growth, LimbLook, Skeleton};
+use crate::scene::{Color, Group, Style};
+use crate::spec::{Growth as Orientation, TreeOverride, TreeSetSpec};
 
 /// Where one tree of a set stands and how it is scaled.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,10 +43,7 @@ fn turn(v: Vec2, deg: f64) -> Vec2 {
 fn overrides_by_tree(set: &TreeSetSpec) -> Vec<Option<&TreeOverride>> {
     let mut by_tree = vec![None; set.count as usize];
     for o in &set.overrides {
-        let n =
-            o.id.strip_prefix("tree-")
-                .and_then(|n| n.parse::<usize>().ok());
-        if let Some(slot) = n.and_then(|n| by_tree.get_mut(n)) {
+        if let Some(slot) = set.tree_of(o).and_then(|n| by_tree.get_mut(n)) {
             *slot = Some(o);
         }
     }
@@ -131,8 +83,20 @@ pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
         .collect()
 }
 
-/// Grows and draws a tree set into a group with id `group_id`, calling
-/// `tree_done` after each tree.
+/// A grown tree, for its flowers and leaves.
+pub struct GrownTree<'s> {
+    /// Its limbs.
+    pub skeleton: &'s Skeleton,
+    /// Its number in the set (for type 2 motif assignment).
+    pub index: usize,
+    /// Its full id (`<layer>.<set>.tree-<index>`).
+    pub id: &'s str,
+    /// Its placement scale (flowers and leaves scale with it).
+    pub scale: f64,
+}
+
+/// Grows and draws a tree set into a group with id `group_id`, one unit
+/// of progress per tree.
 ///
 /// Each tree gets its own random stream, derived from the seed and its id,
 /// so changing one set or tree leaves the others as they were. The final
@@ -140,18 +104,9 @@ pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
 /// leaves, or moves its root, turns and scales it before it grows, so the
 /// region lines still hold. Each tree is a [solid](Group::solid) group of
 /// limbs, followed by its leaves and flowers ([`bloom`]).
-#[allow(clippy::too_many_arguments)]
-pub fn tree_set(
-    set: &TreeSetSpec,
-    group_id: &str,
-    limbs: &LimbSpec,
-    flow: &Flow,
-    cx: &FloraContext<'_>,
-    adjust: &mut Adjustments<'_>,
-    budget: &mut PathBudget,
-    tree_done: &mut dyn FnMut(),
-) -> Result<Group> {
+pub fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let mut group = Group::new(group_id);
+    let limbs = &cx.layer().limbs;
     let style = Style {
         fill: limbs.fill.as_deref().and_then(Color::parse),
         ..Style::default()
@@ -159,10 +114,10 @@ pub fn tree_set(
     let overrides = overrides_by_tree(set);
     for (i, mut place) in placements(set).into_iter().enumerate() {
         let full_id = format!("{group_id}.tree-{i}");
-        let adjusted = adjust.take_tree(&full_id)?;
+        let adjusted = cx.adjust().take_without_motif(&full_id, "a tree")?;
         if adjusted.is_some_and(|a| a.hide) {
-            adjust.take_parts_of(&full_id);
-            tree_done();
+            cx.adjust().take_parts_of(&full_id);
+            cx.advance(1);
             continue;
         }
         if let Some(a) = adjusted {
@@ -178,7 +133,9 @@ pub fn tree_set(
         let mut p = params.resolve();
         p.trunk *= place.scale;
         let downward = place.direction.y > 0.0;
+        let flow = cx.flow();
         let blocked = |q: Point| flow.blocks(q, downward);
+        let stream = cx.stream(&full_id);
         let skeleton = tree::grow(
             set.rule,
             &p,
@@ -187,8 +144,8 @@ pub fn tree_set(
                 direction: place.direction,
                 blocked: &blocked,
             },
-            cx.seed.derive(&full_id).stream(),
-            budget,
+            stream,
+            cx.budget(),
             &format!("tree {full_id}"),
         )?;
         let look = LimbLook {
@@ -202,20 +159,19 @@ pub fn tree_set(
             tree_group.push_path(format!("{full_id}.limb-{k}"), path, style.clone());
         }
         group.push_group(tree_group);
-        if let Some(flora) =
-            bloom::tree_flora(set, &skeleton, i, &full_id, place.scale, cx, adjust, budget)?
-        {
+        let grown = GrownTree {
+            skeleton: &skeleton,
+            index: i,
+            id: &full_id,
+            scale: place.scale,
+        };
+        if let Some(flora) = bloom::tree_flora(set, &grown, cx)? {
             group.push_group(flora.leaves);
             group.push_group(flora.flowers);
         }
-        tree_done();
+        cx.advance(1);
     }
     Ok(group)
-}
-
-/// The id of tree set `k` of a layer.
-pub fn set_id(set: &TreeSetSpec, k: usize) -> String {
-    set.id.clone().unwrap_or_else(|| format!("trees-{k}"))
 }
 
 #[cfg(test)]

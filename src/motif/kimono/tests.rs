@@ -3,7 +3,31 @@
 use kurbo::Point;
 
 use super::*;
-use crate::spec::{Format, SceneSpec, TreeOverride, TreeParams, TreeRule};
+use crate::motif::flora::Library;
+use crate::motif::Flow;
+use crate::spec::{AdjustSpec, Format, Points, SceneSpec, TreeOverride, TreeParams, TreeRule};
+
+/// Runs `f` on layer `l` (at `depth`, default limbs) of a scene with seed 9
+/// whose adjustments are `adjust`; every adjustment must be used.
+fn in_context<T>(
+    lib: &Library,
+    depth: i32,
+    adjust: &[AdjustSpec],
+    f: impl FnOnce(&mut Context<'_>) -> crate::error::Result<T>,
+) -> crate::error::Result<T> {
+    let spec = SceneSpec::parse(
+        "version = 1\nseed = 9\n[[layers]]\nname = \"l\"\n",
+        Format::Toml,
+    )?
+    .edit(|s| s.adjust = adjust.to_vec())?;
+    let flow = Flow::new(&spec.lines);
+    let mut report = |_| {};
+    let mut cx = Context::new(&spec, lib, &flow, &mut report);
+    cx.enter_layer((0, &spec.layers[0]), "l", depth);
+    let out = f(&mut cx)?;
+    cx.finish()?;
+    Ok(out)
+}
 
 fn set(centre: Points, count: u32) -> TreeSetSpec {
     TreeSetSpec {
@@ -71,25 +95,8 @@ fn overrides_change_exactly_the_addressed_tree() {
     assert_eq!(b[1].root, Point::new(60.0, 50.0));
     assert_eq!(b[1].scale, 1.5);
 
-    let flow = Flow::new(&RegionLinesSpec::default());
-    let limbs = LimbSpec::default();
-    let draw = |s: &TreeSetSpec| {
-        tree_set(
-            s,
-            "l.t",
-            &limbs,
-            &flow,
-            &FloraContext {
-                library: &crate::motif::flora::Library::new(),
-                seed: crate::rng::Seed(3),
-                depth: 0,
-            },
-            &mut Adjustments::new(&[]),
-            &mut PathBudget::new(10_000),
-            &mut || {},
-        )
-        .unwrap()
-    };
+    let draw =
+        |s: &TreeSetSpec| in_context(&Library::new(), 0, &[], |cx| tree_set(s, "l.t", cx)).unwrap();
     let (ga, gb) = (draw(&plain), draw(&adjusted));
     assert_eq!(ga.children[0], gb.children[0]);
     assert_eq!(ga.children[2], gb.children[2]);
@@ -168,6 +175,7 @@ fn flowering_set(body: &str) -> TreeSetSpec {
     );
     SceneSpec::parse(&text, Format::Toml)
         .unwrap_or_else(|e| panic!("{e}\n{text}"))
+        .into_inner()
         .layers
         .remove(0)
         .trees
@@ -181,22 +189,7 @@ fn grown(
     depth: i32,
     adjust: &[crate::spec::AdjustSpec],
 ) -> crate::error::Result<std::collections::BTreeMap<String, kurbo::BezPath>> {
-    let mut adjustments = Adjustments::new(adjust);
-    let group = tree_set(
-        set,
-        "l.s",
-        &LimbSpec::default(),
-        &Flow::new(&RegionLinesSpec::default()),
-        &FloraContext {
-            library: lib,
-            seed: crate::rng::Seed(9),
-            depth,
-        },
-        &mut adjustments,
-        &mut PathBudget::new(100_000),
-        &mut || {},
-    )?;
-    adjustments.finish()?;
+    let group = in_context(lib, depth, adjust, |cx| tree_set(set, "l.s", cx))?;
     let mut paths = std::collections::BTreeMap::new();
     group.visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
         paths.insert(p.id.clone(), t * p.path.clone());

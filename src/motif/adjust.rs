@@ -1,5 +1,6 @@
 //! Final adjustment (SPEC §1, design step 4): the description's `[[adjust]]`
-//! entries, looked up by the id a tree, flower or leaf has in the SVG.
+//! entries, looked up by the id a motif of any family has in the SVG (a
+//! tree, a flower, a leaf, a placed path …).
 //!
 //! Every entry must address something: after the scene is built,
 //! [`Adjustments::finish`] reports the first id that matched nothing, so a
@@ -42,18 +43,19 @@ impl<'a> Adjustments<'a> {
         Some(&self.list[i])
     }
 
-    /// Like [`Adjustments::take`] for a tree: trees have no motif to swap.
+    /// Like [`Adjustments::take`] for something that has no motif to swap
+    /// (a tree, a placed path), called `what` in the error.
     ///
     /// # Errors
     /// When the adjustment asks for a motif.
-    pub fn take_tree(&mut self, id: &str) -> Result<Option<&'a AdjustSpec>> {
+    pub fn take_without_motif(&mut self, id: &str, what: &str) -> Result<Option<&'a AdjustSpec>> {
         let Some(i) = self.by_id.get(id).copied() else {
             return Ok(None);
         };
         if self.list[i].motif.is_some() {
             return Err(Error::invalid(
                 format!("adjust[{i}].motif"),
-                format!("'{id}' is a tree; only flowers and leaves have a motif to swap"),
+                format!("'{id}' is {what}; only flowers and leaves have a motif to swap"),
             ));
         }
         Ok(self.take(id))
@@ -81,7 +83,7 @@ impl<'a> Adjustments<'a> {
             Some(i) => Err(Error::invalid(
                 format!("adjust[{i}].id"),
                 format!(
-                    "'{}' matches no tree, flower or leaf (ids are as in the SVG, e.g. \
+                    "'{}' matches nothing drawn (ids are as in the SVG, e.g. \
                      front.trees-0.tree-1.flower-2)",
                     self.list[i].id
                 ),

@@ -1,0 +1,201 @@
+//! [`Context`]: what every generator is handed, whatever its family.
+//!
+//! It carries the scene's seed (each motif derives its own stream from its
+//! id, so editing one part leaves the others as they were), the motif
+//! library, the overall flow, the layer being built (its description, id
+//! and depth), the path budget, the final adjustments by id, and progress.
+//! With it no generator needs more than a handful of arguments, and a new
+//! family gets all of this by taking a `&mut Context`.
+
+use super::adjust::Adjustments;
+use super::flora::Library;
+use super::flow::Flow;
+use crate::error::Result;
+use crate::rng::{RandomStream, Seed};
+use crate::scene::PathBudget;
+use crate::spec::{LayerSpec, ValidSpec};
+
+/// How far generation has come, in work units of any family (a tree, a
+/// cell, a plant; see [`crate::spec::Family::work`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Progress {
+    /// Units done so far.
+    pub done: usize,
+    /// Units in the scene.
+    pub total: usize,
+}
+
+/// The layer being built.
+#[derive(Debug, Clone, Copy)]
+struct Frame<'a> {
+    spec: &'a LayerSpec,
+    id: &'a str,
+    depth: i32,
+    index: usize,
+}
+
+/// What every generator needs (see the module docs).
+pub struct Context<'a> {
+    seed: Seed,
+    library: &'a Library,
+    flow: &'a Flow,
+    layer: Option<Frame<'a>>,
+    /// The field path of the table being built, below its layer.
+    item: String,
+    budget: PathBudget,
+    adjust: Adjustments<'a>,
+    progress: Progress,
+    report: &'a mut dyn FnMut(Progress),
+}
+
+impl<'a> Context<'a> {
+    /// The context of a whole scene: `report` hears of every unit of work
+    /// done, out of the total the description's tables declare.
+    pub(crate) fn new(
+        spec: &'a ValidSpec,
+        library: &'a Library,
+        flow: &'a Flow,
+        report: &'a mut dyn FnMut(Progress),
+    ) -> Context<'a> {
+        let total = spec
+            .layers
+            .iter()
+            .flat_map(LayerSpec::items)
+            .map(|item| item.table.family().work())
+            .sum();
+        Context {
+            seed: Seed(spec.seed),
+            library,
+            flow,
+            layer: None,
+            item: String::new(),
+            budget: PathBudget::new(spec.limits.max_paths),
+            adjust: Adjustments::new(&spec.adjust),
+            progress: Progress { done: 0, total },
+            report,
+        }
+    }
+
+    /// Starts building layer `index` of the description, with SVG id `id`
+    /// at `depth`.
+    pub(crate) fn enter_layer(
+        &mut self,
+        (index, spec): (usize, &'a LayerSpec),
+        id: &'a str,
+        depth: i32,
+    ) {
+        self.layer = Some(Frame {
+            spec,
+            id,
+            depth,
+            index,
+        });
+    }
+
+    /// Starts building the table at field path `field` of the layer
+    /// (`trees[0]`).
+    pub(crate) fn enter_item(&mut self, field: &str) {
+        self.item = field.to_string();
+    }
+
+    /// The full field path of `name` in the table being built
+    /// (`layers[1].paths[0].width`), for errors found while generating.
+    pub fn field(&self, name: &str) -> String {
+        format!("{}.{name}", self.item_field())
+    }
+
+    /// The full field path of the table being built (`layers[1].paths[0]`).
+    pub fn item_field(&self) -> String {
+        format!("layers[{}].{}", self.frame().index, self.item)
+    }
+
+    /// The random stream of the motif with id `id` (a full SVG id): the
+    /// same id always gets the same stream.
+    pub fn stream(&self, id: &str) -> RandomStream {
+        self.seed.derive(id).stream()
+    }
+
+    /// The scene's seed.
+    pub fn seed(&self) -> Seed {
+        self.seed
+    }
+
+    /// Built-in and loaded user motifs and paths.
+    pub fn library(&self) -> &'a Library {
+        self.library
+    }
+
+    /// The overall flow (region lines).
+    pub fn flow(&self) -> &'a Flow {
+        self.flow
+    }
+
+    /// The description of the layer being built.
+    ///
+    pub fn layer(&self) -> &'a LayerSpec {
+        self.frame().spec
+    }
+
+    /// The SVG id of the layer being built.
+    pub fn layer_id(&self) -> &'a str {
+        self.frame().id
+    }
+
+    /// The depth of the layer being built (0 front, larger further back).
+    pub fn depth(&self) -> i32 {
+        self.frame().depth
+    }
+
+    fn frame(&self) -> Frame<'a> {
+        self.layer
+            .expect("Context::enter_layer is called before any layer is built")
+    }
+
+    /// The scene's path budget.
+    pub fn budget(&mut self) -> &mut PathBudget {
+        &mut self.budget
+    }
+
+    /// Takes `n` paths from the budget; `what` names them in the error.
+    ///
+    /// # Errors
+    /// [`crate::Error::Budget`] when the scene would exceed its limit.
+    pub fn take_paths(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
+        self.budget.take(n, what)
+    }
+
+    /// The final adjustments by id.
+    pub fn adjust(&mut self) -> &mut Adjustments<'a> {
+        &mut self.adjust
+    }
+
+    /// Reports `units` more units of work done.
+    pub fn advance(&mut self, units: usize) {
+        if units > 0 {
+            self.progress.done = (self.progress.done + units).min(self.progress.total);
+            (self.report)(self.progress);
+        }
+    }
+
+    /// Units done so far.
+    pub(crate) fn done(&self) -> usize {
+        self.progress.done
+    }
+
+    /// Brings the count to `done` when a generator reported fewer units
+    /// than its table declared (work it skipped).
+    pub(crate) fn advance_to(&mut self, done: usize) {
+        if done > self.progress.done {
+            self.advance(done - self.progress.done);
+        }
+    }
+
+    /// Ends the scene: every adjustment must have found its target.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the first `adjust[i].id` that
+    /// matched nothing.
+    pub(crate) fn finish(self) -> Result<()> {
+        self.adjust.finish()
+    }
+}

@@ -1,0 +1,55 @@
+//! Lines on the page that motifs follow or stop at: control points made
+//! into natural splines, and the overall flow of a scene (SPEC §1.1): the
+//! upper and lower region lines that stop growth.
+
+use kurbo::{BezPath, Point};
+
+use crate::geom::{natural_spline, Side, SideTest};
+use crate::spec::{Points, RegionLinesSpec};
+
+/// Natural spline through control points given as `[x, y]` pairs.
+pub fn flow_line(points: &Points) -> BezPath {
+    let pts: Vec<Point> = points.iter().map(|[x, y]| Point::new(*x, *y)).collect();
+    natural_spline(&pts)
+}
+
+/// The overall flow: what stops growth.
+#[derive(Debug)]
+pub struct Flow {
+    upper: Option<SideTest>,
+    lower: Option<SideTest>,
+}
+
+/// A region line as a far-side test. The line is taken left to right (its
+/// points are reversed when the last lies left of the first), so the far
+/// side of the upper line is above it and that of the lower line below.
+fn region_test(points: &Points, far: Side) -> Option<SideTest> {
+    let mut pts = points.clone();
+    if pts.first()?[0] > pts.last()?[0] {
+        pts.reverse();
+    }
+    Some(SideTest::new(&flow_line(&pts), far))
+}
+
+impl Flow {
+    /// The flow of a scene description's `[lines]`.
+    pub fn new(lines: &RegionLinesSpec) -> Flow {
+        Flow {
+            upper: lines
+                .upper
+                .as_ref()
+                .and_then(|p| region_test(p, Side::Left)),
+            lower: lines
+                .lower
+                .as_ref()
+                .and_then(|p| region_test(p, Side::Right)),
+        }
+    }
+
+    /// True when `p` may not be part of a plant: beyond the upper line, or
+    /// — for one growing downward — beyond the lower line.
+    pub fn blocks(&self, p: Point, downward: bool) -> bool {
+        self.upper.as_ref().is_some_and(|t| t.is_beyond(p))
+            || (downward && self.lower.as_ref().is_some_and(|t| t.is_beyond(p)))
+    }
+}

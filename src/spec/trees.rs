@@ -1,0 +1,248 @@
+//! Tree sets (SPEC §1.2–1.4): the rule, the centre line the trees stand on,
+//! their parameters, per-tree overrides, and the limb drawing of a layer.
+
+use std::collections::BTreeSet;
+
+use serde::{Deserialize, Serialize};
+
+use super::layer::Family;
+use super::validate::{point, points, range};
+use super::{FlowerSpec, LeavesSpec, MotifRef, Points, TreeParams};
+use crate::error::{Error, Result};
+
+/// How limbs become paths (SPEC §1.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LimbStyle {
+    /// A closed outline whose width tapers from `width` to `tip_width`.
+    #[default]
+    Outline,
+    /// A single centre stroke, for one-pass plotting.
+    Stroke,
+}
+
+/// Limb drawing settings of a layer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimbSpec {
+    /// `outline` or `stroke`.
+    #[serde(default)]
+    pub style: LimbStyle,
+    /// Trunk width at the root in mm (0.05–50); branches start at the
+    /// width of their parent where they leave it.
+    #[serde(default = "default_limb_width")]
+    pub width: f64,
+    /// Width at every tip in mm (0–50).
+    #[serde(default = "default_tip_width")]
+    pub tip_width: f64,
+    /// Sideways bow of two-point limbs as a fraction of their length
+    /// (−1 – 1); positive bows towards the branch's own side.
+    #[serde(default = "default_bow")]
+    pub bow: f64,
+    /// Fill colour for outlines (default: none, outline only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fill: Option<String>,
+}
+
+impl Default for LimbSpec {
+    fn default() -> Self {
+        LimbSpec {
+            style: LimbStyle::default(),
+            width: default_limb_width(),
+            tip_width: default_tip_width(),
+            bow: default_bow(),
+            fill: None,
+        }
+    }
+}
+
+fn default_limb_width() -> f64 {
+    2.4
+}
+
+fn default_tip_width() -> f64 {
+    0.3
+}
+
+fn default_bow() -> f64 {
+    0.08
+}
+
+/// The eight tree rules of SPEC §1.2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TreeRule {
+    /// Trunk with alternating complex branches (TreeSub depth 3).
+    Tree1,
+    /// Trunk with alternating simple branches.
+    Tree2,
+    /// Branches on both sides, pattern by generation mod 3.
+    Tree3,
+    /// Branches that fork in three at their end.
+    Tree4,
+    /// Branches on the left only, each as deep as the generations left.
+    Tree5,
+    /// Two root branches, then a Tree2 trunk.
+    Tree6,
+    /// Splits at the root into two Tree2 trunks.
+    Tree7,
+    /// Spray along a 4-point base curve (not recursive).
+    Tree8,
+}
+
+impl TreeRule {
+    /// All rules in order.
+    pub const ALL: [TreeRule; 8] = [
+        TreeRule::Tree1,
+        TreeRule::Tree2,
+        TreeRule::Tree3,
+        TreeRule::Tree4,
+        TreeRule::Tree5,
+        TreeRule::Tree6,
+        TreeRule::Tree7,
+        TreeRule::Tree8,
+    ];
+}
+
+/// How trees stand on their centre line (SPEC §1.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Growth {
+    /// Perpendicular to the centre line, on its upper side.
+    #[default]
+    Perpendicular,
+    /// Along the centre line, in its drawing direction.
+    Parallel,
+}
+
+/// A set of trees of one rule along one centre line.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TreeSetSpec {
+    /// Id of the set, unique in its layer (default `trees-K`, K its index).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub id: Option<String>,
+    /// Which of Tree1–Tree8.
+    pub rule: TreeRule,
+    /// Number of trees (0–10,000), at even arc-length spacing.
+    #[serde(default = "default_count")]
+    pub count: u32,
+    /// The centre line (中心線) of this set: ≥ 2 control points in mm.
+    pub centre: Points,
+    /// Perpendicular to or along the centre line.
+    #[serde(default)]
+    pub growth: Growth,
+    /// Extra rotation of every tree in degrees, clockwise (180 grows
+    /// downward from a perpendicular line).
+    #[serde(default)]
+    pub rotate: f64,
+    /// Rule parameters.
+    #[serde(default)]
+    pub params: TreeParams,
+    /// Per-tree adjustments by id (`tree-0`, `tree-1`, …).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub overrides: Vec<TreeOverride>,
+    /// Flowers at the trees' vertices.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flowers: Option<FlowerSpec>,
+    /// Leaves around the flowers and at the branch joints.
+    #[serde(default, skip_serializing_if = "LeavesSpec::is_empty")]
+    pub leaves: LeavesSpec,
+}
+
+fn default_count() -> u32 {
+    1
+}
+
+/// Final adjustment of one tree (SPEC §1.4).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TreeOverride {
+    /// The tree's id within its set: `tree-N`.
+    pub id: String,
+    /// Move the root here (mm).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root: Option<[f64; 2]>,
+    /// Rotate the growth direction by this many degrees, clockwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<f64>,
+    /// Scale lengths and widths (0.01–100).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+    /// Parameters that replace the set's for this tree.
+    #[serde(default, skip_serializing_if = "TreeParams::is_empty")]
+    pub params: TreeParams,
+}
+
+impl Family for TreeSetSpec {
+    fn check(&self, f: &str) -> Result<()> {
+        range(&format!("{f}.count"), self.count, 0, 10_000)?;
+        points(&format!("{f}.centre"), &self.centre, 2)?;
+        range(&format!("{f}.rotate"), self.rotate, -360.0, 360.0)?;
+        self.params.check(&format!("{f}.params"))?;
+        let mut seen = BTreeSet::new();
+        for (j, o) in self.overrides.iter().enumerate() {
+            let of = format!("{f}.overrides[{j}]");
+            if self.tree_of(o).is_none() {
+                let hint = match self.count {
+                    0 => "this set has no trees".to_string(),
+                    1 => "the only tree is tree-0".to_string(),
+                    n => format!("trees are tree-0 … tree-{}", n - 1),
+                };
+                return Err(Error::invalid(
+                    format!("{of}.id"),
+                    format!("'{}' matches no tree ({hint})", o.id),
+                ));
+            }
+            if !seen.insert(o.id.as_str()) {
+                return Err(Error::invalid(
+                    format!("{of}.id"),
+                    format!("'{}' is overridden twice", o.id),
+                ));
+            }
+            if let Some(p) = o.root {
+                point(&format!("{of}.root"), p)?;
+            }
+            if let Some(r) = o.rotate {
+                range(&format!("{of}.rotate"), r, -360.0, 360.0)?;
+            }
+            if let Some(s) = o.scale {
+                range(&format!("{of}.scale"), s, 0.01, 100.0)?;
+            }
+            o.params.check(&format!("{of}.params"))?;
+        }
+        if let Some(fl) = &self.flowers {
+            fl.check(&format!("{f}.flowers"))?;
+        }
+        self.leaves.check(&format!("{f}.leaves"))
+    }
+
+    fn work(&self) -> usize {
+        self.count as usize
+    }
+
+    fn motifs(&self) -> Vec<&MotifRef> {
+        let mut refs: Vec<&MotifRef> = Vec::new();
+        if let Some(f) = &self.flowers {
+            refs.extend(&f.motifs);
+        }
+        if let Some(r) = &self.leaves.ring {
+            refs.extend(&r.motifs);
+        }
+        if let Some(j) = &self.leaves.joints {
+            refs.extend(&j.motifs);
+        }
+        refs
+    }
+}
+
+impl TreeSetSpec {
+    /// The number of the tree an override addresses (`tree-N`, `N <
+    /// count`, written without leading zeros), if any.
+    pub fn tree_of(&self, o: &TreeOverride) -> Option<usize> {
+        o.id.strip_prefix("tree-")
+            .and_then(|n| n.parse::<u32>().ok())
+            .filter(|n| *n < self.count && o.id == format!("tree-{n}"))
+            .map(|n| n as usize)
+    }
+}
