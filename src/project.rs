@@ -9,9 +9,9 @@ use std::path::Path;
 use kurbo::BezPath;
 
 use crate::error::{Error, Result};
+use crate::input::{import_svg, ImportOptions};
 use crate::motif::flora::{user_drawing, Library};
 use crate::motif::kimono::{self, Adjustments, FloraContext, Flow};
-use crate::output::import::{import_svg, ImportOptions};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot;
 use crate::rng::Seed;

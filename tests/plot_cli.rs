@@ -198,7 +198,7 @@ fn with_axidraw_layers() -> TempDir {
 /// The documentation layers of an SVG, in document order: each one's name
 /// and its paths' points on the page.
 fn unplotted_layers(svg: &str) -> Vec<(String, Vec<Vec<kurbo::Point>>)> {
-    use moyo::output::import::{import_svg, ImportOptions};
+    use moyo::input::{import_svg, ImportOptions};
     let scene = import_svg(svg, &ImportOptions::DEFAULT)
         .expect("moyo reads the SVG")
         .scene;

@@ -7,9 +7,9 @@ use clap::{Args, ValueEnum};
 use kurbo::{BezPath, Point};
 
 use super::{stdout_error, warn_outside_page, CliError};
+use moyo::input::{import_svg, ImportOptions};
 use moyo::output::gcode::{to_gcode, GcodeOptions, Origin};
 use moyo::output::hpgl::{to_hpgl, CutterOptions, HpglOptions};
-use moyo::output::import::{import_svg, ImportOptions};
 use moyo::output::{render_png, to_svg, write_atomic, SvgOptions};
 use moyo::plot::{
     self, HatchOptions, MergeOptions, MultipassOptions, OccludeOptions, PlotOptions,

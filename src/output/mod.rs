@@ -11,7 +11,6 @@
 
 pub mod gcode;
 pub mod hpgl;
-pub mod import;
 
 mod atomic;
 mod dump;
