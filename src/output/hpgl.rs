@@ -75,7 +75,7 @@
 use kurbo::{Point, Vec2};
 use serde::{Deserialize, Serialize};
 
-use super::gcode::{pen_blocks, positive, Stroke};
+use super::strokes::{pen_blocks, positive, Stroke, ToMachine, MIN_TOLERANCE};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 
@@ -254,15 +254,11 @@ pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> String {
         super::number::write_number(&mut out, v, 2);
         out.push_str(";\n");
     }
-    let (w, h) = (scene.page.width, scene.page.height);
-    let map = |p: Point| -> Point {
-        let x = if options.mirror_x { w - p.x } else { p.x };
-        let y = if options.flip_y != options.mirror_y {
-            h - p.y
-        } else {
-            p.y
-        };
-        Point::new(x, y)
+    let to_machine = ToMachine {
+        page: (scene.page.width, scene.page.height),
+        mirror_x: options.mirror_x,
+        from_bottom: options.flip_y != options.mirror_y,
+        negate_y: false,
     };
     for block in pen_blocks(scene, options.tolerance) {
         out.push_str("SP");
@@ -270,10 +266,7 @@ pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> String {
         out.push_str(";\n");
         for path in &block.paths {
             for stroke in &path.strokes {
-                let machine = Stroke {
-                    points: stroke.points.iter().map(|&p| map(p)).collect(),
-                    closed: stroke.closed,
-                };
+                let machine = to_machine.stroke(stroke);
                 let points = match &options.cutter {
                     Some(c) => cut(&machine, c, options.tolerance),
                     None => machine.points,
@@ -396,7 +389,7 @@ fn knife_offset(
 ) -> Vec<Point> {
     // Largest swivel step whose chords stay within the tolerance of the
     // circle, and never more than the threshold.
-    let tolerance = tolerance.max(super::gcode::MIN_TOLERANCE);
+    let tolerance = tolerance.max(MIN_TOLERANCE);
     let tolerance_step = if tolerance < d {
         2.0 * (1.0 - tolerance / d).acos()
     } else {
@@ -441,7 +434,7 @@ fn knife_offset(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::gcode::tests::{two_pen_scene, with_unplotted_layers};
+    use crate::output::strokes::tests::{two_pen_scene, with_unplotted_layers};
 
     /// A point in plotter units.
     type Unit = (i64, i64);
