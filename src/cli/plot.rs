@@ -165,6 +165,10 @@ pub(crate) struct PlotArgs {
     /// HPGL: mirror left–right (cutting on the back of the media).
     #[arg(long, help_heading = "HPGL")]
     mirror: bool,
+    /// HPGL: the coordinates the device accepts, in plotter units (default
+    /// HP-GL's -32768,32767; HP-GL/2 devices take up to ±1073741823).
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true, help_heading = "HPGL")]
+    device_range: Option<[i32; 2]>,
 
     #[command(flatten)]
     speeds: SpeedArgs,
@@ -314,10 +318,23 @@ impl PlotArgs {
             c.knife_offset_mm = self.knife_offset;
             c
         });
-        HpglOptions::DEFAULT
+        let o = HpglOptions::DEFAULT
             .with_cutter(cutter)
-            .with_mirror(self.mirror, false)
+            .with_mirror(self.mirror, false);
+        match self.device_range {
+            Some([min, max]) => o.with_device_range(min, max),
+            None => o,
+        }
     }
+}
+
+/// `MIN,MAX`: two integers.
+fn parse_range(s: &str) -> Result<[i32; 2], String> {
+    let (min, max) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected MIN,MAX, got '{s}'"))?;
+    let number = |t: &str| t.trim().parse::<i32>().map_err(|e| format!("'{t}': {e}"));
+    Ok([number(min)?, number(max)?])
 }
 
 /// `moyo plot`.
@@ -346,7 +363,7 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
         OutputFormat::Hpgl => {
             let o = args.hpgl_options();
             o.validate()?;
-            to_hpgl(&scene, &o)
+            to_hpgl(&scene, &o)?
         }
     };
     let png = match &args.png {
