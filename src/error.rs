@@ -105,6 +105,14 @@ pub enum Error {
     /// The SVG could not be rasterised for the preview.
     #[error("preview: {0}")]
     Preview(String),
+    /// A file's content is wrong: `source` says what and where in it.
+    #[error("{}: {source}", path.display())]
+    File {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong inside it.
+        source: Box<Error>,
+    },
     /// A point of a plotter program lies outside the coordinates the device
     /// accepts (HPGL: [`HpglOptions::device_range`](crate::output::hpgl::HpglOptions::device_range)).
     #[error(
