@@ -105,6 +105,43 @@ pub enum Error {
     /// The SVG could not be rasterised for the preview.
     #[error("preview: {0}")]
     Preview(String),
+    /// A file's content is wrong: `source` says what and where in it.
+    #[error("{}: {source}", path.display())]
+    File {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong inside it.
+        source: Box<Error>,
+    },
+    /// A point of a plotter program lies outside the coordinates the device
+    /// accepts (HPGL: [`HpglOptions::device_range`](crate::output::hpgl::HpglOptions::device_range)).
+    #[error(
+        "hpgl: path {path} reaches ({x_mm:.3}, {y_mm:.3}) mm on the device, \
+         ({x_units:.0}, {y_units:.0}) plotter units: outside the device range \
+         {min_units}…{max_units} units ({min_mm:.3}…{max_mm:.3} mm); shrink or \
+         move the drawing, or widen the range"
+    )]
+    DeviceRange {
+        /// The id of the scene path the point belongs to.
+        path: String,
+        /// The point in device millimetres (after any mirroring, Y flip and
+        /// knife offset).
+        x_mm: f64,
+        /// See `x_mm`.
+        y_mm: f64,
+        /// The point in plotter units, rounded.
+        x_units: f64,
+        /// See `x_units`.
+        y_units: f64,
+        /// The smallest coordinate the device accepts, in plotter units.
+        min_units: i32,
+        /// The largest coordinate the device accepts, in plotter units.
+        max_units: i32,
+        /// `min_units` in millimetres.
+        min_mm: f64,
+        /// `max_units` in millimetres.
+        max_mm: f64,
+    },
 }
 
 fn at_prefix(at: Option<LineCol>, field: &Option<String>) -> String {

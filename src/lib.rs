@@ -49,6 +49,7 @@
 
 pub mod error;
 pub mod geom;
+pub mod input;
 pub mod motif;
 pub mod output;
 pub mod plot;

@@ -172,6 +172,45 @@ fn bad_stage_options_are_refused() {
     }
 }
 
+#[test]
+fn hpgl_beyond_the_device_range_fails_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = r##"<svg xmlns="http://www.w3.org/2000/svg" width="2000mm" height="100mm" viewBox="0 0 2000 100">
+        <path id="long" d="M 10 50 L 1500 50" stroke="#000" fill="none"/>
+    </svg>"##;
+    fs::write(dir.path().join("big.svg"), svg).unwrap();
+    // 1500 mm is 60000 plotter units: beyond HP-GL's 32767.
+    moyo(&dir)
+        .args(["plot", "big.svg", "-o", "out.hpgl"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::starts_with(
+            "error: hpgl: path long reaches (1500.000, 50.000) mm on the device, \
+             (60000, 2000) plotter units: outside the device range -32768…32767 units",
+        ));
+    assert!(!dir.path().join("out.hpgl").exists());
+    // An HP-GL/2 device takes it.
+    moyo(&dir)
+        .args(["plot", "big.svg", "-o", "out.hpgl"])
+        .args(["--device-range", "-1073741824,1073741823"])
+        .assert()
+        .success();
+    let h = fs::read_to_string(dir.path().join("out.hpgl")).unwrap();
+    assert!(h.contains("PU400,2000;\nPD60000,2000;\n"), "{h}");
+    // A range that is no range is refused.
+    for range in ["5,1", "0,2000000000", "5"] {
+        moyo(&dir)
+            .args(["plot", "big.svg", "-o", "x.hpgl", "--device-range", range])
+            .assert()
+            .failure()
+            .stderr(
+                predicate::str::contains("device-range")
+                    .or(predicate::str::contains("device_range")),
+            );
+        assert!(!dir.path().join("x.hpgl").exists());
+    }
+}
+
 // ---------------------------------------------------------------------------
 // AxiDraw documentation layers (`%` names): kept in SVG, never plotted.
 
@@ -198,7 +237,7 @@ fn with_axidraw_layers() -> TempDir {
 /// The documentation layers of an SVG, in document order: each one's name
 /// and its paths' points on the page.
 fn unplotted_layers(svg: &str) -> Vec<(String, Vec<Vec<kurbo::Point>>)> {
-    use moyo::output::import::{import_svg, ImportOptions};
+    use moyo::input::{import_svg, ImportOptions};
     let scene = import_svg(svg, &ImportOptions::DEFAULT)
         .expect("moyo reads the SVG")
         .scene;

@@ -4,18 +4,17 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
-use kurbo::{BezPath, Point};
 
 use super::{stdout_error, warn_outside_page, CliError};
-use moyo::output::gcode::{to_gcode, GcodeOptions, Origin};
-use moyo::output::hpgl::{to_hpgl, CutterOptions, HpglOptions};
-use moyo::output::import::{import_svg, ImportOptions};
-use moyo::output::{render_png, to_svg, write_atomic, SvgOptions};
+use moyo::input::{ImportOptions, Imported};
+use moyo::output::gcode::{GcodeOptions, Origin};
+use moyo::output::hpgl::{CutterOptions, HpglOptions};
+use moyo::output::{write_atomic, SvgOptions};
 use moyo::plot::{
     self, HatchOptions, MergeOptions, MultipassOptions, OccludeOptions, PlotOptions,
     SimplifyOptions, SortOptions, Speeds, TransformOptions,
 };
-use moyo::{Color, Group, Layer, Pen, Scene, Style};
+use moyo::project::{self, PlotFormat, PlotJob, Preview};
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum OutputFormat {
@@ -165,6 +164,10 @@ pub(crate) struct PlotArgs {
     /// HPGL: mirror left–right (cutting on the back of the media).
     #[arg(long, help_heading = "HPGL")]
     mirror: bool,
+    /// HPGL: the coordinates the device accepts, in plotter units (default
+    /// HP-GL's -32768,32767; HP-GL/2 devices take up to ±1073741823).
+    #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true, help_heading = "HPGL")]
+    device_range: Option<[i32; 2]>,
 
     #[command(flatten)]
     speeds: SpeedArgs,
@@ -221,15 +224,13 @@ pub(crate) struct StatsArgs {
     speeds: SpeedArgs,
 }
 
-fn load_svg(path: &Path) -> Result<Scene, CliError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?;
-    let imported = import_svg(&text, &ImportOptions::DEFAULT)
-        .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?;
+/// Reads the SVG at `path`, telling what its import left out.
+fn load_svg(path: &Path, options: &ImportOptions) -> Result<Imported, CliError> {
+    let imported = project::read_svg(path, options)?;
     for w in &imported.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }
-    Ok(imported.scene)
+    Ok(imported)
 }
 
 impl PlotArgs {
@@ -278,6 +279,26 @@ impl PlotArgs {
         }
     }
 
+    /// What `moyo plot` asks of the library.
+    fn job(&self) -> PlotJob {
+        let format = match self.format() {
+            OutputFormat::Svg => {
+                PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision))
+            }
+            OutputFormat::Gcode => PlotFormat::Gcode(self.gcode_options()),
+            OutputFormat::Hpgl => PlotFormat::Hpgl(self.hpgl_options()),
+        };
+        let preview = self.png.as_ref().map(|_| {
+            Preview::DEFAULT
+                .with_dpi(self.dpi)
+                .with_show_travel(self.show_travel)
+        });
+        PlotJob::new(format)
+            .with_stages(self.plot_options())
+            .with_silhouettes(self.silhouettes)
+            .with_preview(preview)
+    }
+
     fn format(&self) -> OutputFormat {
         self.format.unwrap_or_else(|| {
             let ext = self
@@ -314,60 +335,40 @@ impl PlotArgs {
             c.knife_offset_mm = self.knife_offset;
             c
         });
-        HpglOptions::DEFAULT
+        let o = HpglOptions::DEFAULT
             .with_cutter(cutter)
-            .with_mirror(self.mirror, false)
+            .with_mirror(self.mirror, false);
+        match self.device_range {
+            Some([min, max]) => o.with_device_range(min, max),
+            None => o,
+        }
     }
+}
+
+/// `MIN,MAX`: two integers.
+fn parse_range(s: &str) -> Result<[i32; 2], String> {
+    let (min, max) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected MIN,MAX, got '{s}'"))?;
+    let number = |t: &str| t.trim().parse::<i32>().map_err(|e| format!("'{t}': {e}"));
+    Ok([number(min)?, number(max)?])
 }
 
 /// `moyo plot`.
 pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     let speeds = args.speeds.speeds()?;
-    let options = args.plot_options();
-    options
+    let job = args.job();
+    job.stages
         .validate("plot")
         .map_err(|e| CliError::Message(format!("options: {e}")))?;
-    let mut scene = load_svg(&args.input)?;
-    if args.silhouettes {
-        // An imported drawing carries no solid marks: each group of paths
-        // is taken as one shape, as the option's help says.
-        plot::occlude::mark_path_groups_solid(&mut scene);
-    }
-    let scene = plot::run(scene, &options)?;
-
+    let imported = load_svg(&args.input, &job.import)?;
     // Everything is computed before anything is written.
-    let bytes = match args.format() {
-        OutputFormat::Svg => to_svg(&scene, &SvgOptions::DEFAULT.with_precision(args.precision)),
-        OutputFormat::Gcode => {
-            let o = args.gcode_options();
-            o.validate()?;
-            to_gcode(&scene, &o)
-        }
-        OutputFormat::Hpgl => {
-            let o = args.hpgl_options();
-            o.validate()?;
-            to_hpgl(&scene, &o)
-        }
-    };
-    let png = match &args.png {
-        Some(_) => {
-            let preview = if args.show_travel {
-                with_travel(&scene)
-            } else {
-                scene.clone()
-            };
-            Some(render_png(
-                &to_svg(&preview, &SvgOptions::DEFAULT),
-                args.dpi,
-            )?)
-        }
-        None => None,
-    };
-    write_atomic(&args.output, bytes.as_bytes())?;
-    if let (Some(path), Some(png)) = (&args.png, &png) {
+    let plotted = project::plot_scene(imported.scene, &job)?;
+    write_atomic(&args.output, plotted.bytes.as_bytes())?;
+    if let (Some(path), Some(png)) = (&args.png, &plotted.png) {
         write_atomic(path, png)?;
     }
-    let s = plot::stats(&scene, &speeds);
+    let s = plot::stats(&plotted.scene, &speeds);
     eprintln!(
         "wrote {} ({} paths, {:.0} mm pen-down, {:.0} mm pen-up, about {})",
         args.output.display(),
@@ -376,60 +377,8 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
         s.pen_up_mm,
         duration(s.plot_time_s)
     );
-    warn_outside_page(&scene);
+    warn_outside_page(&plotted.scene);
     Ok(())
-}
-
-/// The scene with one more layer: red lines along every pen-up move, in
-/// the order [`plot::stats`] counts them (each pen from the origin).
-fn with_travel(scene: &Scene) -> Scene {
-    let flat = plot::flatten::by_pen(scene);
-    let mut travel = BezPath::new();
-    for layer in flat.layers.iter().filter(|l| l.is_plotted()) {
-        let mut at = Point::ZERO;
-        layer
-            .content
-            .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
-                let path = t * p.path.clone();
-                for sub in plot::flatten::subpaths(&path) {
-                    let (Some(start), Some(end)) = (first_point(&sub), last_point(&sub)) else {
-                        continue;
-                    };
-                    travel.move_to(at);
-                    travel.line_to(start);
-                    at = end;
-                }
-            });
-    }
-    let number = flat.pens.iter().map(|p| p.number).max().unwrap_or(0) + 1;
-    let mut out = flat;
-    out.pens.push(Pen {
-        number,
-        name: "travel".into(),
-        color: Color::rgb(230, 40, 40),
-        width: 0.15,
-    });
-    let mut content = Group::new("travel.paths");
-    content.push_path("travel", travel, Style::default());
-    out.layers.push(Layer {
-        id: "travel".into(),
-        name: "travel".into(),
-        pen: number,
-        depth: -1,
-        content,
-    });
-    out
-}
-
-fn first_point(p: &BezPath) -> Option<Point> {
-    p.elements().first().and_then(|e| e.end_point())
-}
-
-fn last_point(p: &BezPath) -> Option<Point> {
-    match p.elements().last()? {
-        kurbo::PathEl::ClosePath => first_point(p),
-        e => e.end_point(),
-    }
 }
 
 fn duration(seconds: f64) -> String {
@@ -446,8 +395,8 @@ fn duration(seconds: f64) -> String {
 /// `moyo stats`.
 pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     let speeds = args.speeds.speeds()?;
-    let scene = load_svg(&args.input)?;
-    let s = plot::stats(&scene, &speeds);
+    let imported = load_svg(&args.input, &ImportOptions::DEFAULT)?;
+    let s = plot::stats(&imported.scene, &speeds);
     let mut out = std::io::stdout().lock();
     if args.json {
         let text = serde_json::to_string_pretty(&s)

@@ -42,6 +42,22 @@
 //! inside, and in cutter mode the overcut and the knife offset may reach a
 //! few tenths of a millimetre past a shape.
 //!
+//! # Device range
+//!
+//! A plotter takes coordinates only within a range, and what it does with
+//! others differs (HP's own discard the instruction, others clamp, wrap
+//! around or crash the carriage), so nothing outside
+//! [`HpglOptions::device_range`] is written: [`to_hpgl`] fails with
+//! [`Error::DeviceRange`], which names the path and the point in
+//! millimetres and plotter units, and writes nothing. The default,
+//! [`HPGL_RANGE`], is HP-GL's: 16-bit coordinates, −32768…32767 units, the
+//! range the HP 7470A and 7475A accept and the one a cutter that emulates
+//! them can be relied on for. At 40 units per mm that is ±819 mm from the
+//! origin, enough for every named paper size up to A2 (594 mm). Devices
+//! that speak HP-GL/2 accept integers within ±2³⁰ ([`HPGL2_RANGE`]); a
+//! larger sheet or a roll cutter needs that, or the device's own limit,
+//! through [`HpglOptions::with_device_range`].
+//!
 //! # Cutter mode
 //!
 //! With [`HpglOptions::cutter`] set, every stroke goes through two steps
@@ -75,9 +91,17 @@
 use kurbo::{Point, Vec2};
 use serde::{Deserialize, Serialize};
 
-use super::gcode::{pen_blocks, positive, Stroke};
+use super::strokes::{pen_blocks, positive, Stroke, ToMachine, MIN_TOLERANCE};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
+
+/// HP-GL's coordinate range in plotter units (16-bit integers, as the HP
+/// 7470A and 7475A take them): the default device range.
+pub const HPGL_RANGE: [i32; 2] = [-32_768, 32_767];
+
+/// HP-GL/2's integer range in plotter units, −2³⁰…2³⁰ − 1: the widest
+/// device range allowed.
+pub const HPGL2_RANGE: [i32; 2] = [-(1 << 30), (1 << 30) - 1];
 
 /// Largest number of points in one `PD` instruction; longer strokes are
 /// split into several `PD`s (older plotters have small instruction buffers).
@@ -135,7 +159,7 @@ impl Default for CutterOptions {
 /// Options of [`to_hpgl`].
 ///
 /// Check them with [`HpglOptions::validate`] where they enter the program.
-/// [`to_hpgl`] itself never fails.
+/// [`to_hpgl`] itself fails only for a point outside the device range.
 #[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -155,10 +179,15 @@ pub struct HpglOptions {
     pub velocity_cm_s: Option<f64>,
     /// Drag-knife cutting; `None` plots. Default `None`.
     pub cutter: Option<CutterOptions>,
+    /// The smallest and largest coordinate the device accepts, in plotter
+    /// units, for X and Y alike (see "Device range" in the module
+    /// documentation). Default [`HPGL_RANGE`].
+    pub device_range: [i32; 2],
 }
 
 impl HpglOptions {
-    /// Plotting: 40 units per mm, Y up, no mirror, no velocity, no cutter.
+    /// Plotting: 40 units per mm, Y up, no mirror, no velocity, no cutter,
+    /// HP-GL's device range.
     pub const DEFAULT: HpglOptions = HpglOptions {
         tolerance: 0.02,
         units_per_mm: 40.0,
@@ -167,6 +196,7 @@ impl HpglOptions {
         mirror_y: false,
         velocity_cm_s: None,
         cutter: None,
+        device_range: HPGL_RANGE,
     };
 
     /// [`HpglOptions::DEFAULT`] with [`CutterOptions::DEFAULT`].
@@ -209,10 +239,27 @@ impl HpglOptions {
         self
     }
 
+    /// These options with a device range of `min`…`max` plotter units.
+    pub const fn with_device_range(mut self, min: i32, max: i32) -> HpglOptions {
+        self.device_range = [min, max];
+        self
+    }
+
     /// Checks the options; field names in errors are prefixed `hpgl.`.
     pub fn validate(&self) -> Result<()> {
         positive("hpgl.tolerance", self.tolerance)?;
         positive("hpgl.units_per_mm", self.units_per_mm)?;
+        let [min, max] = self.device_range;
+        let [lowest, highest] = HPGL2_RANGE;
+        if !(lowest <= min && min < max && max <= highest) {
+            return Err(Error::invalid(
+                "hpgl.device_range",
+                format!(
+                    "must be [min, max] with min < max, within HP-GL/2's \
+                     {lowest}…{highest} units; got [{min}, {max}]"
+                ),
+            ));
+        }
         if let Some(v) = self.velocity_cm_s {
             positive("hpgl.velocity_cm_s", v)?;
         }
@@ -247,22 +294,22 @@ impl Default for HpglOptions {
 }
 
 /// Writes `scene` as HPGL (see the module documentation).
-pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> String {
+///
+/// # Errors
+/// [`Error::DeviceRange`] for the first point outside
+/// [`HpglOptions::device_range`].
+pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> Result<String> {
     let mut out = String::from("IN;\nPA;\n");
     if let Some(v) = options.velocity_cm_s {
         out.push_str("VS");
         super::number::write_number(&mut out, v, 2);
         out.push_str(";\n");
     }
-    let (w, h) = (scene.page.width, scene.page.height);
-    let map = |p: Point| -> Point {
-        let x = if options.mirror_x { w - p.x } else { p.x };
-        let y = if options.flip_y != options.mirror_y {
-            h - p.y
-        } else {
-            p.y
-        };
-        Point::new(x, y)
+    let to_machine = ToMachine {
+        page: (scene.page.width, scene.page.height),
+        mirror_x: options.mirror_x,
+        from_bottom: options.flip_y != options.mirror_y,
+        negate_y: false,
     };
     for block in pen_blocks(scene, options.tolerance) {
         out.push_str("SP");
@@ -270,37 +317,52 @@ pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> String {
         out.push_str(";\n");
         for path in &block.paths {
             for stroke in &path.strokes {
-                let machine = Stroke {
-                    points: stroke.points.iter().map(|&p| map(p)).collect(),
-                    closed: stroke.closed,
-                };
+                let machine = to_machine.stroke(stroke);
                 let points = match &options.cutter {
                     Some(c) => cut(&machine, c, options.tolerance),
                     None => machine.points,
                 };
-                write_stroke(&mut out, &points, options.units_per_mm);
+                write_stroke(&mut out, &points, options, path.id)?;
             }
         }
     }
     out.push_str("PU;\nSP0;\n");
-    out
+    Ok(out)
 }
 
-/// `PU` to the first point, then `PD` through the rest, in rounded units.
-fn write_stroke(out: &mut String, points: &[Point], units_per_mm: f64) {
+/// `PU` to the first point, then `PD` through the rest, in rounded units;
+/// an error for a point outside the device range (`path` names the scene
+/// path the stroke comes from).
+fn write_stroke(out: &mut String, points: &[Point], o: &HpglOptions, path: &str) -> Result<()> {
+    let [min, max] = o.device_range;
+    let in_range = |v: f64| f64::from(min) <= v && v <= f64::from(max);
     let mut units: Vec<(i64, i64)> = Vec::with_capacity(points.len());
     for p in points {
-        // `as` saturates; non-finite input was rejected upstream.
-        let u = (
-            (p.x * units_per_mm).round() as i64,
-            (p.y * units_per_mm).round() as i64,
+        let (x, y) = (
+            (p.x * o.units_per_mm).round(),
+            (p.y * o.units_per_mm).round(),
         );
+        if !(in_range(x) && in_range(y)) {
+            return Err(Error::DeviceRange {
+                path: path.to_string(),
+                x_mm: p.x,
+                y_mm: p.y,
+                x_units: x,
+                y_units: y,
+                min_units: min,
+                max_units: max,
+                min_mm: f64::from(min) / o.units_per_mm,
+                max_mm: f64::from(max) / o.units_per_mm,
+            });
+        }
+        // Within the range, so integers that `as` keeps exactly.
+        let u = (x as i64, y as i64);
         if units.last() != Some(&u) {
             units.push(u);
         }
     }
     let Some(&(x0, y0)) = units.first() else {
-        return;
+        return Ok(());
     };
     out.push_str(&format!("PU{x0},{y0};\n"));
     // A one-point stroke is a dot: lower the pen where it is.
@@ -319,6 +381,7 @@ fn write_stroke(out: &mut String, points: &[Point], units_per_mm: f64) {
         }
         out.push_str(";\n");
     }
+    Ok(())
 }
 
 /// The path of the knife holder's axis that cuts `stroke` (machine mm):
@@ -396,7 +459,7 @@ fn knife_offset(
 ) -> Vec<Point> {
     // Largest swivel step whose chords stay within the tolerance of the
     // circle, and never more than the threshold.
-    let tolerance = tolerance.max(super::gcode::MIN_TOLERANCE);
+    let tolerance = tolerance.max(MIN_TOLERANCE);
     let tolerance_step = if tolerance < d {
         2.0 * (1.0 - tolerance / d).acos()
     } else {
@@ -441,7 +504,7 @@ fn knife_offset(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::gcode::tests::{two_pen_scene, with_unplotted_layers};
+    use crate::output::strokes::tests::{two_pen_scene, with_unplotted_layers};
 
     /// A point in plotter units.
     type Unit = (i64, i64);
@@ -483,7 +546,7 @@ mod tests {
 
     #[test]
     fn snapshot_of_two_pen_scene() {
-        insta::assert_snapshot!(to_hpgl(&two_pen_scene(), &HpglOptions::DEFAULT));
+        insta::assert_snapshot!(to_hpgl(&two_pen_scene(), &HpglOptions::DEFAULT).unwrap());
     }
 
     #[test]
@@ -491,12 +554,13 @@ mod tests {
         insta::assert_snapshot!(to_hpgl(
             &two_pen_scene(),
             &HpglOptions::CUTTER.with_velocity_cm_s(Some(10.0))
-        ));
+        )
+        .unwrap());
     }
 
     #[test]
     fn frame_and_pens_in_order() {
-        let h = to_hpgl(&two_pen_scene(), &HpglOptions::DEFAULT);
+        let h = to_hpgl(&two_pen_scene(), &HpglOptions::DEFAULT).unwrap();
         assert!(h.starts_with("IN;\nPA;\nSP1;\nPU"), "{h}");
         assert!(h.ends_with("PU;\nSP0;\n"));
         let sp1 = h.find("SP1;").unwrap();
@@ -508,7 +572,8 @@ mod tests {
         let v = to_hpgl(
             &two_pen_scene(),
             &HpglOptions::DEFAULT.with_velocity_cm_s(Some(12.5)),
-        );
+        )
+        .unwrap();
         assert!(v.starts_with("IN;\nPA;\nVS12.5;\nSP1;"));
     }
 
@@ -516,8 +581,8 @@ mod tests {
     fn unplotted_layers_are_left_out() {
         let scene = with_unplotted_layers(two_pen_scene());
         for options in [HpglOptions::DEFAULT, HpglOptions::CUTTER] {
-            let with = to_hpgl(&scene, &options);
-            assert_eq!(with, to_hpgl(&two_pen_scene(), &options));
+            let with = to_hpgl(&scene, &options).unwrap();
+            assert_eq!(with, to_hpgl(&two_pen_scene(), &options).unwrap());
             assert!(!with.contains("SP3;"), "pen 3 draws only notes");
             // The frame's corners would be at 40 and 3960 units.
             for (pu, pds) in strokes(&with) {
@@ -539,7 +604,7 @@ mod tests {
             HpglOptions::CUTTER,
             HpglOptions::CUTTER.with_mirror(true, false),
         ] {
-            let out = to_hpgl(&two_pen_scene(), &o);
+            let out = to_hpgl(&two_pen_scene(), &o).unwrap();
             let all = strokes(&out);
             assert_eq!(all.len(), 3);
             for (pu, pd) in all {
@@ -558,7 +623,7 @@ mod tests {
     fn y_flip_and_mirrors() {
         // The square's first corner is page (10, 10), its second (30, 10).
         let first = |o: HpglOptions| {
-            let s = strokes(&to_hpgl(&square_only(), &o));
+            let s = strokes(&to_hpgl(&square_only(), &o).unwrap());
             (s[0].0, s[0].1[0])
         };
         let d = HpglOptions::DEFAULT;
@@ -584,7 +649,8 @@ mod tests {
         let h = to_hpgl(
             &two_pen_scene(),
             &HpglOptions::DEFAULT.with_tolerance(0.001),
-        );
+        )
+        .unwrap();
         let circle = &strokes(&h)[2];
         assert!(circle.1.len() > MAX_POINTS_PER_PD * 2, "{}", circle.1.len());
         for line in h.lines().filter(|l| l.starts_with("PD")) {
@@ -598,7 +664,7 @@ mod tests {
     fn cutter_closes_outlines_and_overcuts_by_the_given_length() {
         let o =
             HpglOptions::CUTTER.with_cutter(Some(CutterOptions::DEFAULT.with_knife_offset_mm(0.0)));
-        let s = strokes(&to_hpgl(&square_only(), &o));
+        let s = strokes(&to_hpgl(&square_only(), &o).unwrap());
         assert_eq!(s.len(), 1);
         let (pu, pd) = &s[0];
         // Around the square, back to the start, then 1 mm = 40 units on.
@@ -623,7 +689,7 @@ mod tests {
                     .with_knife_offset_mm(0.0)
                     .with_overcut_mm(overcut),
             ));
-            let s = strokes(&to_hpgl(&circle, &o));
+            let s = strokes(&to_hpgl(&circle, &o).unwrap());
             let (pu, pd) = &s[0];
             let back = pd
                 .iter()
@@ -644,7 +710,10 @@ mod tests {
         open.layers.retain(|l| l.id == "vine-layer");
         let o =
             HpglOptions::CUTTER.with_cutter(Some(CutterOptions::DEFAULT.with_knife_offset_mm(0.0)));
-        assert_eq!(to_hpgl(&open, &o), to_hpgl(&open, &HpglOptions::DEFAULT));
+        assert_eq!(
+            to_hpgl(&open, &o).unwrap(),
+            to_hpgl(&open, &HpglOptions::DEFAULT).unwrap()
+        );
     }
 
     #[test]
@@ -666,7 +735,7 @@ mod tests {
     #[test]
     fn knife_offset_swivels_at_corners_and_keeps_sides_straight() {
         let o = HpglOptions::CUTTER.with_cutter(Some(CutterOptions::DEFAULT.with_overcut_mm(0.0)));
-        let s = strokes(&to_hpgl(&square_only(), &o));
+        let s = strokes(&to_hpgl(&square_only(), &o).unwrap());
         let (pu, pd) = &s[0];
         let mut path = vec![*pu];
         path.extend(pd);
@@ -780,16 +849,92 @@ mod tests {
             .content
             .push_path("dot", dot, crate::scene::Style::default());
         for o in [HpglOptions::DEFAULT, HpglOptions::CUTTER] {
-            let h = to_hpgl(&s, &o);
+            let h = to_hpgl(&s, &o).unwrap();
             // Page (6, 7) after the 5 mm margin; y = 80 − 7 = 73 mm.
             assert!(h.contains("PU240,2920;\nPD240,2920;\n"), "{h}");
         }
     }
 
     #[test]
+    fn points_outside_the_device_range_are_an_error() {
+        // The square spans 400…1200 units: a range ending at 1000 cuts it.
+        let o = HpglOptions::DEFAULT.with_device_range(0, 1000);
+        let e = to_hpgl(&square_only(), &o).unwrap_err();
+        let Error::DeviceRange {
+            path,
+            x_mm,
+            y_mm,
+            x_units,
+            y_units,
+            min_units,
+            max_units,
+            max_mm,
+            ..
+        } = &e
+        else {
+            panic!("{e:?}")
+        };
+        // Pages y 10 → 80 − 10 = 70 mm from the bottom, 2800 units.
+        assert_eq!(path, "square");
+        assert_eq!((*x_mm, *y_mm), (10.0, 70.0));
+        assert_eq!((*x_units, *y_units), (400.0, 2800.0));
+        assert_eq!((*min_units, *max_units, *max_mm), (0, 1000, 25.0));
+        assert_eq!(
+            e.to_string(),
+            "hpgl: path square reaches (10.000, 70.000) mm on the device, \
+             (400, 2800) plotter units: outside the device range 0…1000 units \
+             (0.000…25.000 mm); shrink or move the drawing, or widen the range"
+        );
+
+        // HP-GL's range holds about ±819 mm at 40 units per mm.
+        let mut far = square_only();
+        far.page.width = 2000.0;
+        far.layers[0].content.transform = kurbo::Affine::translate((900.0, 0.0));
+        let e = to_hpgl(&far, &HpglOptions::DEFAULT).unwrap_err();
+        assert!(e.to_string().contains("(36400, 2800) plotter units"), "{e}");
+        // A wider range takes it, with the same bytes as before the check.
+        let wide = HpglOptions::DEFAULT.with_device_range(HPGL2_RANGE[0], HPGL2_RANGE[1]);
+        assert!(to_hpgl(&far, &wide).unwrap().contains("PU36400,2800;"));
+        // Mirrored and cut, the point the device is sent to is checked.
+        let cut = HpglOptions::CUTTER.with_mirror(true, false);
+        assert!(to_hpgl(&far, &cut.with_device_range(0, 1_000_000)).is_ok());
+        let e = to_hpgl(&square_only(), &cut.with_device_range(0, 3605)).unwrap_err();
+        assert!(
+            matches!(e, Error::DeviceRange { x_units, .. } if x_units > 3605.0),
+            "{e}"
+        );
+
+        // Huge coordinates never wrap around into nonsense units.
+        far.layers[0].content.transform = kurbo::Affine::translate((1e15, 0.0));
+        let e = to_hpgl(&far, &wide).unwrap_err();
+        assert!(
+            matches!(e, Error::DeviceRange { x_units, .. } if x_units > 1e16),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn device_range_is_validated() {
+        assert_eq!(HpglOptions::DEFAULT.device_range, HPGL_RANGE);
+        for [min, max] in [[0, 0], [10, -10], [HPGL2_RANGE[0] - 1, 0], [0, i32::MAX]] {
+            let e = HpglOptions::DEFAULT
+                .with_device_range(min, max)
+                .validate()
+                .unwrap_err();
+            assert!(e.to_string().starts_with("hpgl.device_range: "), "{e}");
+        }
+        let o: HpglOptions = toml::from_str("device_range = [0, 100000]").unwrap();
+        assert_eq!(o.device_range, [0, 100_000]);
+        assert!(o.validate().is_ok());
+    }
+
+    #[test]
     fn empty_scene_is_a_valid_program() {
         let mut s = two_pen_scene();
         s.layers.clear();
-        assert_eq!(to_hpgl(&s, &HpglOptions::DEFAULT), "IN;\nPA;\nPU;\nSP0;\n");
+        assert_eq!(
+            to_hpgl(&s, &HpglOptions::DEFAULT).unwrap(),
+            "IN;\nPA;\nPU;\nSP0;\n"
+        );
     }
 }

@@ -5,18 +5,21 @@
 //!   with the scene description embedded ([`embedded_description`] reads it
 //!   back);
 //! - [`render_png`]: a PNG preview rendered from that SVG text;
+//! - [`gcode`] and [`hpgl`]: programs for pen plotters and cutters, both
+//!   written from one stroke model (pens in order, flattened strokes,
+//!   closed or open, page to machine coordinates);
 //! - [`path_dump`]: a stable one-line-per-path text for snapshot tests;
 //! - [`write_atomic`]: puts any of these on disk without half-written files;
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
 pub mod gcode;
 pub mod hpgl;
-pub mod import;
 
 mod atomic;
 mod dump;
 mod number;
 mod preview;
+mod strokes;
 mod svg;
 
 pub use atomic::write_atomic;

@@ -1,0 +1,621 @@
+//! SVG import: any SVG document (moyo's own output, an Inkscape drawing, a
+//! hand-written file) read back into a [`Scene`] in millimetres.
+//!
+//! [`import_svg`] lets usvg resolve the document — CSS, inherited styles,
+//! `use`, `symbol`, nested `svg`, markers, basic shapes and arcs all become
+//! plain Bézier paths with absolute transforms — and then maps it onto the
+//! scene graph:
+//!
+//! - **Units.** One CSS pixel is `1/px_per_inch` inch (96 dpi, as in SVG);
+//!   `width="210mm" height="297mm" viewBox="0 0 210 297"` therefore maps one
+//!   user unit to exactly one millimetre. Every transform, the viewBox
+//!   included, is baked into the path coordinates, so the imported scene has
+//!   flat layers, identity transforms, zero margins and a page the size of
+//!   the document.
+//! - **Pens.** Top-level Inkscape layers (`<g inkscape:groupmode="layer">`)
+//!   become one scene layer and pen each. The pen number is the leading
+//!   integer of `inkscape:label` (`"3 blue"` → pen 3 named `blue`, the
+//!   convention of moyo, AxiDraw and vpype); layers without one get the
+//!   smallest number no other layer claims. Without layers, paths are
+//!   grouped by stroke colour (fill colour when unstroked): one pen per
+//!   colour, numbered in order of first appearance. A pen's colour and width
+//!   are the most common stroke colour and drawn stroke width of its paths.
+//! - **Layer names**, following AxiDraw's layer control:
+//!   - Leading whitespace is ignored. A label whose first character is then
+//!     `%` marks a *documentation layer*: it is imported whole (its
+//!     sub-layers included) as a scene layer named by the trimmed label
+//!     (`"%guides"`, `"% 2 notes"`), which is therefore not plotted
+//!     ([`Layer::is_plotted`](crate::scene::Layer::is_plotted)): it survives in SVG output and the preview,
+//!     but G-code, HPGL, the plot stages and the plot statistics leave it
+//!     out. It reads no pen number (`"% 2 notes"` is not pen 2): each such
+//!     layer gets a pen of its own (its colour and width for the preview),
+//!     numbered after every plotted pen, so that adding or removing a `%`
+//!     layer never renumbers the others. This holds when grouping by colour
+//!     too: a documentation layer's paths never join a colour's pen.
+//!   - Otherwise a leading integer 1–999 is the pen number, and the
+//!     separators after it (whitespace, `-`, `_`, `:`) are dropped: `"3
+//!     red"`, `"3-red"`, `"3_red"` and `"3: red"` are all pen 3 named `red`.
+//!     A label that is only a number (`"3"`) names the layer by the whole
+//!     label. When the rest of the label starts with `%` (`"3 %odd"`), the
+//!     layer is plotted (AxiDraw reads the number first) and keeps the
+//!     whole label as its name. A label that starts otherwise (`"red"`,
+//!     `"0 red"`, `"!2 pause"`) has no pen number: the whole label is the
+//!     name, and the pen takes a free number. AxiDraw's other codes (`!`
+//!     pause, `+H`, `+S`, `+D` after the number) are kept in the name and
+//!     not acted upon.
+//!   - Sub-layers are not parsed, as in AxiDraw 3 and later: they belong to
+//!     their top-level layer, so a `%` sub-layer inside a plotted layer is
+//!     plotted with it, and everything inside a `%` layer is not plotted.
+//!   - A hidden layer (`display:none`) is skipped with a warning, `%` or
+//!     not.
+//! - **Paint.** A filled path keeps its fill colour in [`Style::fill`](crate::scene::Style::fill) (the
+//!   region that hatching and occlusion work on); the stroke is implied by
+//!   the pen. Paths with neither fill nor stroke are dropped.
+//! - **Not imported, with a warning:** text (moyo is built without fonts;
+//!   convert text to paths first), raster images, and the effect of clip
+//!   paths, masks and filters (the paths are imported unclipped).
+//!
+//! Bad input is an [`Error`], never a panic: an empty file, malformed XML, a
+//! root element other than `<svg>`, a document without a usable size, and
+//! numbers that cannot be plotted (NaN, infinities, coordinates beyond
+//! ±[`MAX_COORD`](crate::units::MAX_COORD) mm).
+//!
+//! Round trip: importing what [`to_svg`](crate::output::to_svg) wrote gives
+//! back the same pens (numbers, names, colours, widths), the same paths per pen
+//! in the same order within 1e-3 mm, the fills and the embedded scene
+//! description; the scene layers drawn by one pen come back merged into
+//! one layer, and groups come back flattened. A documentation layer comes
+//! back as a layer of its own with the same name (the `%` label), paths,
+//! colour and width; its pen number is not in the SVG, so it is the one
+//! numbered as above.
+//!
+//! Limits: usvg computes in `f32`, so coordinates carry a relative error
+//! of about 1e-7 (0.04 µm on an A3 sheet). Only top-level layers are pens;
+//! sub-layers belong to their top-level layer.
+//! [`Style`](crate::scene::Style) has no fill rule: fills are non-zero
+//! downstream, so an `evenodd` fill is redrawn as the normalised contours of
+//! its area (the same lines; holes wound against their outline). Layer
+//! visibility set by a CSS stylesheet (rather than `style`/`display` on the
+//! layer) hides the layer without the "hidden" wording in its warning.
+//!
+//! # The steps, one file each
+//!
+//! 1. `scan`: a pass over the raw XML for what usvg drops or cannot tell —
+//!    the root element, Inkscape layers (given ids where they lack one, so
+//!    that usvg's groups can be matched to them), text and images — and,
+//!    through `numbers`, a check of every number that becomes geometry
+//!    (svgtypes parses them as usvg will).
+//! 2. usvg builds its tree; `page` takes the page size from it, exact in
+//!    `f64` where the source allows.
+//! 3. `walk`: usvg's tree to paths in page millimetres, each with its
+//!    layer, paint and id.
+//! 4. `pens`: paths to pens (by layer or by colour), then the scene.
+
+mod numbers;
+mod page;
+mod pens;
+mod scan;
+mod walk;
+
+#[cfg(test)]
+mod test_support;
+
+use kurbo::Affine;
+use resvg::usvg::{self, roxmltree};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, LineCol, Result};
+use crate::output::embedded_description;
+use crate::scene::Scene;
+use crate::units::MM_PER_INCH;
+
+/// How imported paths are assigned to pens.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PenGrouping {
+    /// Top-level Inkscape layers when the document has any, otherwise
+    /// stroke colours.
+    #[default]
+    Auto,
+    /// Always by stroke colour (fill colour for unstroked paths), ignoring
+    /// layers.
+    StrokeColor,
+}
+
+/// Options of [`import_svg`].
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ImportOptions {
+    /// CSS pixels per inch: the size of a unitless length. 96 is the SVG
+    /// standard; some old Illustrator files assume 72.
+    pub px_per_inch: f64,
+    /// How paths are assigned to pens.
+    pub pens: PenGrouping,
+}
+
+impl ImportOptions {
+    /// 96 px per inch, pens from layers when there are any.
+    pub const DEFAULT: ImportOptions = ImportOptions {
+        px_per_inch: 96.0,
+        pens: PenGrouping::Auto,
+    };
+
+    /// These options with `px_per_inch` pixels per inch.
+    pub const fn with_px_per_inch(mut self, px_per_inch: f64) -> ImportOptions {
+        self.px_per_inch = px_per_inch;
+        self
+    }
+
+    /// These options with another pen grouping.
+    pub const fn with_pens(mut self, pens: PenGrouping) -> ImportOptions {
+        self.pens = pens;
+        self
+    }
+}
+
+impl Default for ImportOptions {
+    fn default() -> ImportOptions {
+        ImportOptions::DEFAULT
+    }
+}
+
+/// The result of [`import_svg`]: the scene and what was left out of it.
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq)]
+pub struct Imported {
+    /// The drawing, in millimetres, with flat layers and zero margins.
+    pub scene: Scene,
+    /// One sentence per kind of content that was skipped or approximated
+    /// (text, images, unpainted paths, clipping, hidden layers…), in a
+    /// fixed order. Empty when the import is exact.
+    pub warnings: Vec<String>,
+}
+
+/// Reads an SVG document into a scene (see the module documentation for
+/// the mapping and its limits).
+///
+/// # Errors
+///
+/// [`Error::Parse`] for an empty file, malformed XML or a document that is
+/// not SVG; [`Error::Invalid`] for bad options, a document without a usable
+/// size, or numbers that cannot be plotted.
+pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
+    if !(options.px_per_inch.is_finite() && options.px_per_inch > 0.0) {
+        return Err(Error::invalid(
+            "px_per_inch",
+            format!("must be a positive number, got {}", options.px_per_inch),
+        ));
+    }
+    let doc = parse_xml(text)?;
+    let source = scan::scan(text, &doc)?;
+    let usvg_options = usvg::Options {
+        dpi: options.px_per_inch as f32,
+        // Images are never imported: don't decode them, and never read
+        // files named by `href`.
+        image_href_resolver: usvg::ImageHrefResolver {
+            resolve_data: Box::new(|_, _, _| None),
+            resolve_string: Box::new(|_, _| None),
+        },
+        ..usvg::Options::default()
+    };
+    let tree = match &source.rewritten {
+        Some(rewritten) => {
+            let doc = parse_xml(rewritten)?;
+            usvg::Tree::from_xmltree(&doc, &usvg_options)
+        }
+        None => usvg::Tree::from_xmltree(&doc, &usvg_options),
+    }
+    .map_err(usvg_error)?;
+
+    let mm_per_px = MM_PER_INCH / options.px_per_inch;
+    let page = page::page_of(
+        &tree,
+        page::exact_size(doc.root_element(), mm_per_px),
+        mm_per_px,
+    )?;
+    let walked = walk::walk(&tree, Affine::scale(mm_per_px), &source.layers)?;
+
+    let mut warnings = Vec::new();
+    let mut plural = |n: usize, one: &str, many: &str, rest: &str| {
+        if n > 0 {
+            let noun = if n == 1 { one } else { many };
+            warnings.push(format!("skipped {n} {noun}: {rest}"));
+        }
+    };
+    plural(
+        source.texts,
+        "text element",
+        "text elements",
+        "text is not imported (convert it to paths first, \
+         e.g. Inkscape's Path > Object to Path)",
+    );
+    plural(
+        source.images,
+        "image",
+        "images",
+        "raster images cannot be plotted",
+    );
+    plural(walked.unpainted, "path", "paths", "no fill and no stroke");
+    plural(walked.invisible, "path", "paths", "hidden by `visibility`");
+    if walked.effects > 0 {
+        let n = walked.effects;
+        let groups = if n == 1 { "group" } else { "groups" };
+        warnings.push(format!(
+            "clip paths, masks and filters are not applied ({n} {groups}): \
+             their paths are imported whole"
+        ));
+    }
+    warnings.extend(source.warnings);
+
+    let (buckets, stacked) = match options.pens {
+        PenGrouping::Auto if !source.layers.is_empty() => {
+            (pens::by_layer(&source.layers, &walked, &mut warnings), true)
+        }
+        _ => (pens::by_color(&walked.drawn, &source.layers), false),
+    };
+    let scene = pens::assemble(
+        page,
+        buckets,
+        stacked,
+        walked.drawn,
+        embedded_description(text),
+        &mut warnings,
+    );
+    Ok(Imported { scene, warnings })
+}
+
+/// An `Error::Parse` without a position.
+fn parse_error(message: impl Into<String>) -> Error {
+    Error::Parse {
+        at: None,
+        field: None,
+        message: message.into(),
+    }
+}
+
+/// Parses XML the way usvg does (DTDs with entities allowed; roxmltree
+/// guards against entity expansion attacks).
+fn parse_xml(text: &str) -> Result<roxmltree::Document<'_>> {
+    if text.trim().is_empty() {
+        return Err(parse_error("the file is empty; expected an SVG document"));
+    }
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..roxmltree::ParsingOptions::default()
+    };
+    roxmltree::Document::parse_with_options(text, options).map_err(|e| {
+        let pos = e.pos();
+        // The position goes into `at`; keep it out of the sentence.
+        let message = e.to_string().replace(&format!(" at {pos}"), "");
+        Error::Parse {
+            at: Some(LineCol {
+                line: pos.row as usize,
+                column: pos.col as usize,
+            }),
+            field: None,
+            message: format!("malformed SVG (not well-formed XML): {message}"),
+        }
+    })
+}
+
+fn usvg_error(e: usvg::Error) -> Error {
+    match e {
+        usvg::Error::InvalidSize => Error::invalid(
+            "svg",
+            "the document has no usable size: width and height must be \
+             positive, or a viewBox must be given",
+        ),
+        usvg::Error::ElementsLimitReached => {
+            parse_error("the document has more than 1,000,000 elements")
+        }
+        usvg::Error::ParsingFailed(roxmltree::Error::NoRootNode) => {
+            parse_error("not an SVG document: the root element must be <svg>")
+        }
+        e => parse_error(format!("malformed SVG: {e}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_support::{assert_rect_near, doc, import, import_err, near, paths};
+    use super::*;
+    use crate::output::{to_svg, SvgOptions};
+    use crate::scene::{Color, Group, Layer, Pen, Style};
+    use crate::units::{Margins, Orientation, Page, PaperName};
+    use kurbo::{BezPath, Line, PathEl, Point, Rect, Shape};
+    use proptest::prelude::*;
+
+    #[test]
+    fn documentation_layers_round_trip_through_the_writer() {
+        let mut original = sample_scene();
+        let mut guides = Group::new("guides");
+        guides.push_path(
+            "frame",
+            Rect::new(-5.0, -5.0, 100.0, 150.0).into_path(0.1),
+            Style::default(),
+        );
+        original.layers.insert(
+            1,
+            Layer {
+                id: "guides-layer".into(),
+                name: "%guides & notes".into(),
+                pen: 1,
+                depth: 9,
+                content: guides,
+            },
+        );
+        let svg = to_svg(&original, &SvgOptions::DEFAULT);
+        assert!(
+            svg.contains("inkscape:label=\"%guides &amp; notes\""),
+            "{svg}"
+        );
+        let imported = import(&svg);
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let scene = &imported.scene;
+        // The plotted pens (1 and 7) are as before; the guides get a pen of
+        // their own, the smallest free number, with pen 1's colour and width.
+        assert_eq!(
+            [scene.pens[0].clone(), scene.pens[2].clone()],
+            original.pens[..]
+        );
+        let pen = &scene.pens[1];
+        assert_eq!(
+            (pen.number, pen.name.as_str(), pen.color, pen.width),
+            (2, "%guides & notes", Color::BLACK, 0.3)
+        );
+        let guides = &scene.layers[0];
+        assert_eq!(
+            (guides.name.as_str(), guides.pen, guides.is_plotted()),
+            ("%guides & notes", 2, false)
+        );
+        let frame = &paths(scene)[0].1;
+        assert_rect_near(
+            frame.bounding_box(),
+            Rect::new(5.0, 5.0, 110.0, 160.0),
+            1e-4,
+        );
+        // Plotted paths are unchanged by the documentation layer.
+        assert_eq!(
+            scene.path_count() - 1,
+            import(&to_svg(&sample_scene(), &SvgOptions::DEFAULT))
+                .scene
+                .path_count()
+        );
+        // And once more: the label survives a second round.
+        let again = to_svg(scene, &SvgOptions::DEFAULT);
+        assert!(again.contains("inkscape:label=\"%guides &amp; notes\""));
+        assert!(!import(&again).scene.layers[0].is_plotted());
+    }
+
+    #[test]
+    fn bad_input_is_a_clear_error() {
+        let cases: [(&str, &str); 9] = [
+            ("", "empty"),
+            (" \n\t ", "empty"),
+            ("<notsvg/>", "root element is <notsvg>"),
+            ("hello", "not well-formed XML"),
+            (
+                r#"<svg xmlns="http://www.w3.org/2000/svg"><g>"#,
+                "not well-formed XML",
+            ),
+            (&doc("<path d='M0 0 L1 1'")[..60], "not well-formed XML"),
+            (
+                r#"<svg xmlns="http://example.com/not-svg"/>"#,
+                "not an SVG document",
+            ),
+            (r#"<?xml version="1.0"?>"#, "not well-formed XML"),
+            (
+                r#"<svg xmlns="http://www.w3.org/2000/svg" width="0" height="10"/>"#,
+                "no usable size",
+            ),
+        ];
+        for (text, expected) in cases {
+            let e = import_err(text);
+            assert!(e.to_string().contains(expected), "{text:?}: {e}");
+        }
+        // Positions are reported once, in `at`.
+        let e = import_err("<svg xmlns=\"http://www.w3.org/2000/svg\">\n  <g>\n</svg>");
+        let Error::Parse { at: Some(at), .. } = &e else {
+            panic!("{e:?}")
+        };
+        assert_eq!(at.line, 3);
+        assert_eq!(e.to_string().matches(&at.to_string()).count(), 1, "{e}");
+    }
+
+    #[test]
+    fn options_validate_and_deserialize() {
+        for bad in [0.0, -96.0, f64::NAN, f64::INFINITY] {
+            let e =
+                import_svg(&doc(""), &ImportOptions::DEFAULT.with_px_per_inch(bad)).unwrap_err();
+            assert!(
+                e.to_string()
+                    .starts_with("px_per_inch: must be a positive number"),
+                "{e}"
+            );
+        }
+        let options: ImportOptions =
+            serde_json::from_str(r#"{"px_per_inch": 72, "pens": "stroke_color"}"#).unwrap();
+        assert_eq!(
+            options,
+            ImportOptions::DEFAULT
+                .with_px_per_inch(72.0)
+                .with_pens(PenGrouping::StrokeColor)
+        );
+        let defaults: ImportOptions = serde_json::from_str("{}").unwrap();
+        assert_eq!(defaults, ImportOptions::default());
+        assert!(serde_json::from_str::<ImportOptions>(r#"{"dpi": 72}"#).is_err());
+
+        // Grouping by colour ignores the layers.
+        let layered = doc(r##"<g inkscape:groupmode="layer" inkscape:label="1 a">
+                 <path d="M0 0 L1 0" stroke="red"/><path d="M0 1 L1 1" stroke="blue"/></g>
+               <g inkscape:groupmode="layer" inkscape:label="2 b"><path d="M0 2 L1 2" stroke="red"/></g>"##);
+        let auto = import(&layered);
+        assert_eq!(auto.scene.pen_stats(1).paths, 2);
+        assert_eq!(
+            auto.warnings,
+            ["pen 1 draws 2 stroke colours; it takes the most common one, #ff0000"]
+        );
+        let by_color = import_svg(
+            &layered,
+            &ImportOptions::DEFAULT.with_pens(PenGrouping::StrokeColor),
+        )
+        .unwrap();
+        assert_eq!(by_color.scene.pen_stats(1).paths, 2);
+        assert_eq!(by_color.scene.pens[1].color, Color::rgb(0, 0, 255));
+    }
+
+    /// A scene like the writer's own test scene: two pens, three layers at
+    /// different depths, margins, a scaled group with a filled quad/cubic
+    /// petal, and a description.
+    fn sample_scene() -> Scene {
+        let mut front = Group::new("front");
+        front.push_path(
+            "stem",
+            Line::new((0.0, 0.0), (20.0, 10.0)).into_path(0.1),
+            Style::default(),
+        );
+        let mut leaf = BezPath::new();
+        leaf.move_to((5.0, 5.0));
+        leaf.quad_to((7.5, 0.0), (10.0, 5.0));
+        leaf.curve_to((9.0, 7.0), (6.0, 7.0), (5.0, 5.0));
+        leaf.close_path();
+        let mut flower = Group::new("flower");
+        flower.transform =
+            Affine::translate((30.0, 40.0)) * Affine::rotate(0.3) * Affine::scale(0.5);
+        flower.push_path(
+            "petal",
+            leaf,
+            Style {
+                fill: Some(Color::rgb(0xdc, 0x14, 0x3c)),
+                ..Style::default()
+            },
+        );
+        front.push_group(flower);
+        let mut back = Group::new("back");
+        back.push_path(
+            "box",
+            Rect::new(0.0, 0.0, 100.0, 50.0).into_path(0.1),
+            Style::default(),
+        );
+        back.push_path(
+            "ring",
+            {
+                let mut ring = Rect::new(10.0, 10.0, 40.0, 40.0).into_path(0.1);
+                ring.extend(kurbo::Circle::new((25.0, 25.0), 5.0).path_elements(0.1));
+                ring
+            },
+            Style {
+                fill: Some(Color::rgb(1, 2, 3)),
+                ..Style::default()
+            },
+        );
+        let mut sky = Group::new("sky");
+        sky.push_path(
+            "cloud",
+            Line::new((1.0 / 3.0, -0.0001), (2.0 / 3.0, 1.0)).into_path(0.1),
+            Style::default(),
+        );
+        let pen = |number, name: &str, color, width| Pen {
+            number,
+            name: name.into(),
+            color,
+            width,
+        };
+        let layer = |id: &str, pen, depth, content| Layer {
+            id: id.into(),
+            name: id.into(),
+            pen,
+            depth,
+            content,
+        };
+        Scene {
+            page: Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
+            pens: vec![
+                pen(1, "black", Color::BLACK, 0.3),
+                pen(7, "red & \"fine\"", Color::rgb(255, 0, 0), 0.25),
+            ],
+            layers: vec![
+                layer("sky-layer", 7, 1, sky),
+                layer("front-layer", 1, 0, front),
+                layer("back-layer", 1, 2, back),
+            ],
+            description: Some("seed = 7\n[page]\nsize = \"A5\"\n".into()),
+        }
+    }
+
+    #[test]
+    fn moyo_svg_round_trips() {
+        let original = sample_scene();
+        let svg = to_svg(&original, &SvgOptions::DEFAULT);
+        let imported = import(&svg);
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let scene = &imported.scene;
+        assert_eq!(scene.pens, original.pens);
+        assert_eq!(scene.description, original.description);
+        assert_eq!(
+            (scene.page.width, scene.page.height),
+            (original.page.width, original.page.height)
+        );
+        // The writer puts each pen's layers back to front; so does the import.
+        let mut expected: Vec<(u32, BezPath, Style)> = Vec::new();
+        for pen in [1, 7] {
+            for layer in original
+                .layers_back_to_front()
+                .into_iter()
+                .filter(|l| l.pen == pen)
+            {
+                layer
+                    .content
+                    .visit_paths(original.page_transform(), &mut |p, t| {
+                        expected.push((pen, t * p.path.clone(), p.style.clone()))
+                    });
+            }
+        }
+        let got = paths(scene);
+        assert_eq!(got.len(), expected.len());
+        for ((pen_a, a, style_a), (pen_b, b, style_b)) in got.iter().zip(&expected) {
+            assert_eq!((pen_a, style_a), (pen_b, style_b));
+            assert_eq!(a.elements().len(), b.elements().len(), "{a:?} vs {b:?}");
+            for (ea, eb) in a.elements().iter().zip(b.elements()) {
+                let points = |e: &PathEl| -> Vec<Point> {
+                    match *e {
+                        PathEl::MoveTo(p) | PathEl::LineTo(p) => vec![p],
+                        PathEl::QuadTo(p, q) => vec![p, q],
+                        PathEl::CurveTo(p, q, r) => vec![p, q, r],
+                        PathEl::ClosePath => vec![],
+                    }
+                };
+                assert_eq!(std::mem::discriminant(ea), std::mem::discriminant(eb));
+                for (pa, pb) in points(ea).into_iter().zip(points(eb)) {
+                    assert!(near(pa, pb, 1e-3), "{pa:?} vs {pb:?}");
+                }
+            }
+        }
+        // And once more: importing the re-export changes nothing.
+        let again = import(&to_svg(scene, &SvgOptions::DEFAULT.with_precision(6)));
+        assert_eq!(again.scene.pens, scene.pens);
+        assert_eq!(again.scene.path_count(), scene.path_count());
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        #[test]
+        fn truncated_or_mangled_svg_never_panics(
+            cut in 0usize..4000,
+            at in 0usize..4000,
+            junk in "[ -~]{0,12}",
+        ) {
+            let svg = to_svg(&sample_scene(), &SvgOptions::DEFAULT);
+            let mut text = svg[..cut.min(svg.len())].to_string();
+            text.insert_str(at.min(text.len()), &junk);
+            let _ = import_svg(&text, &ImportOptions::DEFAULT);
+        }
+
+        #[test]
+        fn arbitrary_text_never_panics(text in "\\PC{0,300}") {
+            let _ = import_svg(&text, &ImportOptions::DEFAULT);
+        }
+    }
+}

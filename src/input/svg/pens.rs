@@ -1,0 +1,637 @@
+//! Paths to pens, and the scene: one bucket of paths per top-level layer
+//! (with the layer label's pen number) or per colour, documentation layers
+//! kept apart and numbered after the plotted pens; then one scene layer
+//! per bucket, pens with their most common colour and width, and ids
+//! unique in the scene.
+
+use std::collections::{BTreeMap, HashMap, HashSet};
+
+use super::scan::LayerSource;
+use super::walk::{Drawn, Walked};
+use crate::scene::{Color, Group, Layer, Pen, Scene, Style};
+use crate::units::Page;
+
+/// Width of a pen none of whose paths is stroked (a fine liner).
+const DEFAULT_PEN_WIDTH: f64 = 0.3;
+
+/// Pen numbers a layer label may carry (as in the scene description).
+const PEN_NUMBERS: std::ops::RangeInclusive<u32> = 1..=999;
+
+/// One future scene layer: a pen number, names and its paths (indices
+/// into the drawn list, in paint order).
+#[derive(Debug)]
+pub(super) struct Bucket {
+    pen: u32,
+    pen_name: String,
+    layer_name: String,
+    members: Vec<usize>,
+    /// False for a documentation layer (its `layer_name` starts with `%`).
+    plotted: bool,
+}
+
+impl Bucket {
+    /// A bucket for a documentation layer labelled `label`; its pen is
+    /// numbered later, after every plotted pen ([`number_unplotted`]).
+    fn unplotted(label: &str) -> Bucket {
+        let name = label.trim().to_string();
+        Bucket {
+            pen: 0,
+            pen_name: name.clone(),
+            layer_name: name,
+            members: Vec::new(),
+            plotted: false,
+        }
+    }
+}
+
+/// Gives each documentation layer's bucket a pen of its own: the smallest
+/// numbers no other bucket uses, in document order. They come after all the
+/// plotted pens are numbered, so a `%` layer never changes the numbering of
+/// the layers that are plotted.
+fn number_unplotted(buckets: &mut [Bucket]) {
+    let mut taken: HashSet<u32> = buckets
+        .iter()
+        .filter(|b| b.plotted)
+        .map(|b| b.pen)
+        .collect();
+    for bucket in buckets.iter_mut().filter(|b| !b.plotted) {
+        let n = (1..)
+            .find(|n| !taken.contains(n))
+            .expect("some number is free");
+        taken.insert(n);
+        bucket.pen = n;
+    }
+}
+
+/// One bucket per found top-level layer (in document order), plus one for
+/// paths outside every layer.
+pub(super) fn by_layer(
+    layers: &[LayerSource],
+    walked: &Walked,
+    warnings: &mut Vec<String>,
+) -> Vec<Bucket> {
+    // Documentation layers claim no pen number: "% 2 notes" is not pen 2.
+    let labels: Vec<(Option<u32>, String)> = layers
+        .iter()
+        .map(|l| {
+            if l.plotted {
+                split_label(&l.label)
+            } else {
+                (None, String::new())
+            }
+        })
+        .collect();
+    let mut taken: HashSet<u32> = labels.iter().filter_map(|(n, _)| *n).collect();
+    let mut next_free = || {
+        let n = (1..)
+            .find(|n| !taken.contains(n))
+            .expect("some number is free");
+        taken.insert(n);
+        n
+    };
+    let mut buckets = Vec::new();
+    let mut index_of = vec![None; layers.len()];
+    for (i, (layer, (number, name))) in layers.iter().zip(labels).enumerate() {
+        if !walked.found[i] {
+            let why = if layer.hidden {
+                "it is hidden"
+            } else {
+                "it is hidden or has nothing usvg could draw"
+            };
+            warnings.push(format!("skipped layer '{}': {why}", layer.label));
+            continue;
+        }
+        index_of[i] = Some(buckets.len());
+        if !layer.plotted {
+            buckets.push(Bucket::unplotted(&layer.label));
+            continue;
+        }
+        let pen = number.unwrap_or_else(&mut next_free);
+        // The layer keeps the whole label when the rest alone would be no
+        // name, or would read as a documentation layer ("3 %odd" is
+        // plotted, with pen 3).
+        let layer_name = if name.is_empty() || !Layer::name_is_plotted(&name) {
+            layer.label.clone()
+        } else {
+            name.clone()
+        };
+        buckets.push(Bucket {
+            pen,
+            pen_name: name,
+            layer_name,
+            members: Vec::new(),
+            plotted: true,
+        });
+    }
+    let mut outside = Vec::new();
+    for (k, d) in walked.drawn.iter().enumerate() {
+        match d.layer.and_then(|i| index_of[i]) {
+            Some(b) => buckets[b].members.push(k),
+            None => outside.push(k),
+        }
+    }
+    if !outside.is_empty() {
+        let pen = next_free();
+        let n = outside.len();
+        let paths = if n == 1 { "path" } else { "paths" };
+        warnings.push(format!(
+            "{n} {paths} outside every layer went to an extra layer 'unlayered' (pen {pen})"
+        ));
+        buckets.push(Bucket {
+            pen,
+            pen_name: "unlayered".into(),
+            layer_name: "unlayered".into(),
+            members: outside,
+            plotted: true,
+        });
+    }
+    number_unplotted(&mut buckets);
+    buckets
+}
+
+/// Splits `"3 blue"` into pen 3 and `blue`; a label without a leading pen
+/// number (1–999) is all name. Whitespace before the number and
+/// separators after it (whitespace, `-`, `_`, `:`) are dropped, so
+/// `"3-blue"`, `"3_blue"`, `"3: blue"` and `" 3 blue"` are all pen 3 named
+/// `blue`.
+fn split_label(label: &str) -> (Option<u32>, String) {
+    let label = label.trim();
+    let digits = label.len() - label.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+    match label[..digits].parse::<u32>() {
+        Ok(n) if PEN_NUMBERS.contains(&n) => {
+            let rest = label[digits..]
+                .trim_start_matches(|c: char| c.is_whitespace() || "-_:".contains(c));
+            (Some(n), rest.trim_end().to_string())
+        }
+        _ => (None, label.to_string()),
+    }
+}
+
+/// One bucket per colour (stroke, else fill), pens numbered in order of
+/// first appearance; the paths of each documentation layer (`%` label)
+/// stay apart, in a bucket of their own after the colours.
+pub(super) fn by_color(drawn: &[Drawn], layers: &[LayerSource]) -> Vec<Bucket> {
+    let mut buckets: Vec<Bucket> = Vec::new();
+    let mut index: HashMap<u32, usize> = HashMap::new();
+    // Documentation layer (index into `layers`) → its paths.
+    let mut unplotted: BTreeMap<usize, Vec<usize>> = Default::default();
+    for (k, d) in drawn.iter().enumerate() {
+        let Some(color) = d.stroke.map(|(c, _)| c).or(d.fill) else {
+            continue;
+        };
+        if let Some(i) = d.layer.filter(|&i| !layers[i].plotted) {
+            unplotted.entry(i).or_default().push(k);
+            continue;
+        }
+        let i = *index.entry(color_key(color)).or_insert_with(|| {
+            buckets.push(Bucket {
+                pen: buckets.len() as u32 + 1,
+                pen_name: color.to_string(),
+                layer_name: color.to_string(),
+                members: Vec::new(),
+                plotted: true,
+            });
+            buckets.len() - 1
+        });
+        buckets[i].members.push(k);
+    }
+    for (i, members) in unplotted {
+        let mut bucket = Bucket::unplotted(&layers[i].label);
+        bucket.members = members;
+        buckets.push(bucket);
+    }
+    number_unplotted(&mut buckets);
+    buckets
+}
+
+fn color_key(c: Color) -> u32 {
+    u32::from_be_bytes([0, c.r, c.g, c.b])
+}
+
+/// The most frequent value by `key`, ties going to the one seen first.
+fn most_common<T: Copy, K: std::hash::Hash + Eq>(
+    values: impl IntoIterator<Item = T>,
+    key: impl Fn(T) -> K,
+) -> Option<T> {
+    // key → (count, first position, value)
+    let mut counts: HashMap<K, (usize, usize, T)> = HashMap::new();
+    for (i, v) in values.into_iter().enumerate() {
+        counts.entry(key(v)).or_insert((0, i, v)).0 += 1;
+    }
+    counts
+        .into_values()
+        .max_by_key(|&(n, first, _)| (n, std::cmp::Reverse(first)))
+        .map(|(_, _, v)| v)
+}
+
+/// Hands out ids unique within the scene: the wanted one, else with
+/// `-2`, `-3`… appended.
+struct Ids(HashSet<String>);
+
+impl Ids {
+    fn unique(&mut self, wanted: &str) -> String {
+        let mut id = wanted.to_string();
+        let mut n = 1;
+        while self.0.contains(&id) {
+            n += 1;
+            id = format!("{wanted}-{n}");
+        }
+        self.0.insert(id.clone());
+        id
+    }
+}
+
+/// Builds the scene. `stacked`: the buckets are in paint order (layers),
+/// so the first is the furthest back; colour buckets all get depth 0.
+pub(super) fn assemble(
+    page: Page,
+    buckets: Vec<Bucket>,
+    stacked: bool,
+    drawn: Vec<Drawn>,
+    description: Option<String>,
+    warnings: &mut Vec<String>,
+) -> Scene {
+    // Pen number → its buckets, in ascending pen order.
+    let mut of_pen: BTreeMap<u32, Vec<&Bucket>> = Default::default();
+    for bucket in &buckets {
+        of_pen.entry(bucket.pen).or_default().push(bucket);
+    }
+    let numbers: Vec<u32> = of_pen.keys().copied().collect();
+
+    let mut pens = Vec::new();
+    for (&number, pen_buckets) in &of_pen {
+        let members = || {
+            pen_buckets
+                .iter()
+                .flat_map(|b| b.members.iter().map(|&k| &drawn[k]))
+        };
+        let strokes = || members().filter_map(|d| d.stroke);
+        let color = most_common(strokes().map(|(c, _)| c), color_key)
+            .or_else(|| most_common(members().filter_map(|d| d.fill), color_key))
+            .unwrap_or(Color::BLACK);
+        let width =
+            most_common(strokes().map(|(_, w)| w), f64::to_bits).unwrap_or(DEFAULT_PEN_WIDTH);
+        let colors: HashSet<u32> = strokes().map(|(c, _)| color_key(c)).collect();
+        if colors.len() > 1 {
+            warnings.push(format!(
+                "pen {number} draws {} stroke colours; it takes the most common one, {color}",
+                colors.len()
+            ));
+        }
+        pens.push(Pen {
+            number,
+            name: pen_buckets[0].pen_name.clone(),
+            color,
+            width,
+        });
+    }
+
+    // The writer names its pen layers `pen-N`; keep those free.
+    let mut ids = Ids(numbers.iter().map(|n| format!("pen-{n}")).collect());
+    let layer_ids: Vec<(String, String)> = (1..=buckets.len())
+        .map(|k| {
+            let id = ids.unique(&format!("layer-{k}"));
+            let group = ids.unique(&format!("{id}-paths"));
+            (id, group)
+        })
+        .collect();
+    let mut drawn: Vec<Option<Drawn>> = drawn.into_iter().map(Some).collect();
+    let count = buckets.len();
+    let layers = buckets
+        .into_iter()
+        .zip(layer_ids)
+        .enumerate()
+        .map(|(i, (bucket, (id, group_id)))| {
+            let mut content = Group::new(group_id);
+            for (n, k) in bucket.members.into_iter().enumerate() {
+                let d = drawn[k].take().expect("each path is in one bucket");
+                let wanted = if d.id.is_empty() {
+                    format!("{id}-path-{}", n + 1)
+                } else {
+                    d.id
+                };
+                content.push_path(
+                    ids.unique(&wanted),
+                    d.path,
+                    Style {
+                        fill: d.fill,
+                        ..Style::default()
+                    },
+                );
+            }
+            Layer {
+                id,
+                name: bucket.layer_name,
+                pen: bucket.pen,
+                depth: if stacked { (count - 1 - i) as i32 } else { 0 },
+                content,
+            }
+        })
+        .collect();
+    Scene {
+        page,
+        pens,
+        layers,
+        description,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_support::{assert_rect_near, doc, import, paths};
+    use super::super::{import_svg, ImportOptions, PenGrouping};
+    use crate::scene::{path_length, Color};
+    use kurbo::{Rect, Shape};
+
+    #[test]
+    fn inkscape_layers_become_numbered_pens() {
+        let imported = import(&doc(
+            r##"<g id="L"><path d="M0 90 L10 90" stroke="#008000" fill="none"/></g>
+            <g inkscape:groupmode="layer" id="layer1" inkscape:label="3 blue"
+               style="stroke:#0000ff;stroke-width:0.5;fill:none">
+              <path d="M0 0 L10 0"/>
+              <g transform="translate(0 5)"><path id="second" d="M0 0 L10 0"/></g>
+              <g inkscape:groupmode="layer" inkscape:label="sub-layer"><path d="M0 9 L10 9"/></g>
+            </g>
+            <g inkscape:groupmode="layer" inkscape:label="Outline" stroke="#ff0000"
+               stroke-width="0.25" fill="none">
+              <rect x="1" y="1" width="5" height="5"/>
+            </g>
+            <g inkscape:groupmode="layer" id="layer3" inkscape:label="1 black" stroke="black"
+               fill="none" stroke-width="2" transform="scale(0.5)">
+              <circle cx="10" cy="10" r="4"/>
+            </g>
+            <g inkscape:groupmode="layer" id="hid" inkscape:label="4 hidden"
+               style="display: none" stroke="black">
+              <path d="M0 0 L1 1"/>
+            </g>
+            <g inkscape:groupmode="layer" id="L" inkscape:label="2 - green" stroke="#008000">
+              <path d="M0 50 L10 50" fill="none"/>
+            </g>"##,
+        ));
+        let scene = &imported.scene;
+        let pens: Vec<(u32, &str, String, f64)> = scene
+            .pens
+            .iter()
+            .map(|p| (p.number, p.name.as_str(), p.color.to_string(), p.width))
+            .collect();
+        // "Outline" takes the smallest free number (5); the unlayered path
+        // comes after it (6); the hidden layer's pen 4 is unused. Without a
+        // stroke-width, SVG's default of one user unit (here 1 mm) holds.
+        assert_eq!(
+            pens,
+            [
+                (1, "black", "#000000".to_string(), 1.0),
+                (2, "green", "#008000".to_string(), 1.0),
+                (3, "blue", "#0000ff".to_string(), 0.5),
+                (5, "Outline", "#ff0000".to_string(), 0.25),
+                (6, "unlayered", "#008000".to_string(), 1.0),
+            ]
+        );
+        let layers: Vec<(&str, u32, i32, usize)> = scene
+            .layers
+            .iter()
+            .map(|l| (l.name.as_str(), l.pen, l.depth, l.content.children.len()))
+            .collect();
+        assert_eq!(
+            layers,
+            [
+                ("blue", 3, 4, 3),
+                ("Outline", 5, 3, 1),
+                ("black", 1, 2, 1),
+                ("green", 2, 1, 1),
+                ("unlayered", 6, 0, 1),
+            ]
+        );
+        // The layer's transform is baked in: circle at (5, 5), radius 2.
+        let circle = &paths(scene)[4].1;
+        assert_rect_near(circle.bounding_box(), Rect::new(3.0, 3.0, 7.0, 7.0), 1e-4);
+        // Element ids survive; the rest are made from the layer's.
+        let ids: Vec<String> = scene.layers[0]
+            .content
+            .children
+            .iter()
+            .map(|n| match n {
+                crate::scene::Node::Path(p) => p.id.clone(),
+                crate::scene::Node::Group(g) => panic!("flat layers, got {}", g.id),
+            })
+            .collect();
+        assert_eq!(ids, ["layer-1-path-1", "second", "layer-1-path-3"]);
+        assert_eq!(
+            imported.warnings,
+            [
+                "skipped layer '4 hidden': it is hidden",
+                "1 path outside every layer went to an extra layer 'unlayered' (pen 6)",
+            ]
+        );
+    }
+
+    #[test]
+    fn without_layers_pens_follow_stroke_colours() {
+        let imported = import(&doc(r##"<path d="M0 0 L10 0" stroke="red"/>
+               <path d="M0 1 L10 1" stroke="#00f" stroke-width="0.7" fill="none"/>
+               <path d="M0 2 L10 2" stroke="rgb(255,0,0)" fill="none"/>
+               <rect x="0" y="5" width="5" height="5" fill="green"/>
+               <path d="M0 3 L10 3" fill="none"/>
+               <path d="M0 4 L10 4" fill="none" stroke="none"/>
+               <path d="M0 4 L10 4" stroke="red" fill="none" visibility="hidden"/>"##));
+        let scene = &imported.scene;
+        let pens: Vec<(u32, String, String, f64)> = scene
+            .pens
+            .iter()
+            .map(|p| (p.number, p.name.clone(), p.color.to_string(), p.width))
+            .collect();
+        assert_eq!(
+            pens,
+            [
+                (1, "#ff0000".into(), "#ff0000".into(), 1.0),
+                (2, "#0000ff".into(), "#0000ff".into(), 0.7),
+                (3, "#008000".into(), "#008000".into(), 0.3),
+            ]
+        );
+        assert_eq!(scene.pen_stats(1).paths, 2);
+        assert_eq!(scene.pen_stats(2).paths, 1);
+        assert_eq!(scene.pen_stats(3).paths, 1);
+        assert!(scene.layers.iter().all(|l| l.depth == 0));
+        // The fill-only rect is a region; SVG's default black fill stays on
+        // the first line, as the renderer would paint it.
+        let all = paths(scene);
+        assert_eq!(all[3].2.fill, Some(Color::rgb(0, 128, 0)));
+        assert_eq!(all[0].2.fill, Some(Color::BLACK));
+        assert_eq!(all[1].2.fill, None);
+        assert_eq!(
+            imported.warnings,
+            [
+                "skipped 2 paths: no fill and no stroke",
+                "skipped 1 path: hidden by `visibility`",
+            ]
+        );
+    }
+
+    #[test]
+    fn inkscape_file_with_sublayer_hidden_layer_and_text() {
+        let imported = import(include_str!(
+            "../../../tests/fixtures/import/inkscape_layers.svg"
+        ));
+        let scene = &imported.scene;
+        assert_eq!((scene.page.width, scene.page.height), (210.0, 297.0));
+        let pens: Vec<(u32, &str, String, f64)> = scene
+            .pens
+            .iter()
+            .map(|p| (p.number, p.name.as_str(), p.color.to_string(), p.width))
+            .collect();
+        assert_eq!(
+            pens,
+            [
+                (1, "black outline", "#000000".to_string(), 0.5),
+                (2, "red", "#ff0000".to_string(), 0.3),
+            ]
+        );
+        // The sub-layer's wave belongs to pen 1.
+        assert_eq!(scene.pen_stats(1).paths, 3);
+        assert_eq!(scene.pen_stats(2).paths, 1);
+        let all = paths(scene);
+        assert_eq!(all[1].2.fill, Some(Color::rgb(0xd4, 0xaa, 0x00)));
+        // The layer's translate(10,-5) is baked in.
+        assert_rect_near(
+            all[3].1.bounding_box(),
+            Rect::new(135.0, 30.0, 185.0, 80.0),
+            1e-3,
+        );
+        assert_eq!(
+            imported.warnings,
+            [
+                "skipped 1 text element: text is not imported (convert it to paths \
+                 first, e.g. Inkscape's Path > Object to Path)",
+                "skipped layer '3 guides': it is hidden",
+            ]
+        );
+    }
+
+    #[test]
+    fn axidraw_documentation_layers_are_imported_but_not_plotted() {
+        let imported = import(include_str!(
+            "../../../tests/fixtures/import/axidraw_layers.svg"
+        ));
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let scene = &imported.scene;
+        let pens: Vec<(u32, &str, String, f64)> = scene
+            .pens
+            .iter()
+            .map(|p| (p.number, p.name.as_str(), p.color.to_string(), p.width))
+            .collect();
+        // The documentation layers' pens come after the plotted ones.
+        assert_eq!(
+            pens,
+            [
+                (1, "black", "#000000".to_string(), 0.3),
+                (2, "red", "#ff0000".to_string(), 0.5),
+                (3, "%guides", "#00aaff".to_string(), 0.2),
+                (4, "% 2 notes", "#888888".to_string(), 0.1),
+            ]
+        );
+        let layers: Vec<(&str, u32, i32, bool, usize)> = scene
+            .layers
+            .iter()
+            .map(|l| {
+                let n = l.content.children.len();
+                (l.name.as_str(), l.pen, l.depth, l.is_plotted(), n)
+            })
+            .collect();
+        assert_eq!(
+            layers,
+            [
+                ("%guides", 3, 3, false, 2),
+                ("black", 1, 2, true, 3),
+                ("red", 2, 1, true, 1),
+                ("% 2 notes", 4, 0, false, 1),
+            ]
+        );
+        // The "%" sub-layer's path belongs to pen 1 and is plotted; the
+        // frame keeps its fill.
+        assert_eq!(scene.pen_stats(1).paths, 3);
+        let all = paths(scene);
+        assert_eq!(all[0].2.fill, Some(Color::rgb(0xe8, 0xf4, 0xff)));
+        assert!((path_length(&all[0].1) - 560.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn layer_labels_follow_axidraw() {
+        let layer = |label: &str, y: f64| {
+            format!(
+                r#"<g inkscape:groupmode="layer" inkscape:label="{label}" stroke="black">
+                   <path d="M0 {y} L10 {y}"/></g>"#
+            )
+        };
+        let labels = [
+            "%notes",
+            "3 red",
+            "% 2 guides",
+            "7-green",
+            "Outline",
+            "5 %odd",
+            "  %  spaced",
+            "0 zero",
+            "!2 pause",
+            "9",
+        ];
+        let body: String = labels
+            .iter()
+            .enumerate()
+            .map(|(i, l)| layer(l, i as f64))
+            .collect();
+        let imported = import(&doc(&body));
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let got: Vec<(&str, u32, &str, bool)> = imported
+            .scene
+            .layers
+            .iter()
+            .map(|l| {
+                let pen = imported.scene.pen(l.pen).unwrap();
+                (l.name.as_str(), l.pen, pen.name.as_str(), l.is_plotted())
+            })
+            .collect();
+        // Numbered: 3, 7, 5, 9. Free numbers in document order: plotted
+        // layers first (1, 2, 4), then the documentation layers (6, 8, 10).
+        assert_eq!(
+            got,
+            [
+                ("%notes", 6, "%notes", false),
+                ("red", 3, "red", true),
+                ("% 2 guides", 8, "% 2 guides", false),
+                ("green", 7, "green", true),
+                ("Outline", 1, "Outline", true),
+                ("5 %odd", 5, "%odd", true),
+                ("%  spaced", 10, "%  spaced", false),
+                ("0 zero", 2, "0 zero", true),
+                ("!2 pause", 4, "!2 pause", true),
+                ("9", 9, "", true),
+            ]
+        );
+
+        // Grouping by colour still keeps each documentation layer apart.
+        let by_color = import_svg(
+            &doc(&body),
+            &ImportOptions::DEFAULT.with_pens(PenGrouping::StrokeColor),
+        )
+        .unwrap();
+        let got: Vec<(&str, u32, bool, usize)> = by_color
+            .scene
+            .layers
+            .iter()
+            .map(|l| {
+                let n = l.content.children.len();
+                (l.name.as_str(), l.pen, l.is_plotted(), n)
+            })
+            .collect();
+        assert_eq!(
+            got,
+            [
+                ("#000000", 1, true, 7),
+                ("%notes", 2, false, 1),
+                ("% 2 guides", 3, false, 1),
+                ("%  spaced", 4, false, 1),
+            ]
+        );
+    }
+}

@@ -1,0 +1,437 @@
+//! The walk over usvg's tree: every painted, visible path converted to
+//! page millimetres (all transforms baked in), with its layer, paint and
+//! id, and a count of what was left out.
+
+use std::collections::HashMap;
+
+use kurbo::{Affine, BezPath, Point};
+use resvg::usvg::{self, tiny_skia_path::PathSegment};
+
+use super::page::round_size;
+use super::scan::LayerSource;
+use crate::error::{Error, Result};
+use crate::geom::region::{FillRule, Region};
+use crate::scene::Color;
+use crate::units::MAX_COORD;
+
+/// A usvg path converted to page millimetres.
+#[derive(Debug)]
+pub(super) struct Drawn {
+    /// Index into the scanned layers, `None` outside every layer.
+    pub layer: Option<usize>,
+    /// The element id (empty when it had none).
+    pub id: String,
+    /// The geometry in page millimetres.
+    pub path: BezPath,
+    /// Colour and drawn width in mm.
+    pub stroke: Option<(Color, f64)>,
+    /// Fill colour.
+    pub fill: Option<Color>,
+}
+
+/// What the walk found, in paint order.
+#[derive(Debug)]
+pub(super) struct Walked {
+    /// The paths.
+    pub drawn: Vec<Drawn>,
+    /// For each scanned layer, whether usvg kept it (it drops hidden ones).
+    pub found: Vec<bool>,
+    /// Paths with neither fill nor stroke, left out.
+    pub unpainted: usize,
+    /// Paths hidden by `visibility`, left out.
+    pub invisible: usize,
+    /// Groups with a clip path that cuts, a mask or a filter (not applied).
+    pub effects: usize,
+}
+
+/// Walks `tree`, mapping its coordinates to mm with `to_mm`; `layers` are
+/// the top-level layers the scan found, matched to usvg's groups by id.
+///
+/// # Errors
+/// [`Error::Invalid`] for a point beyond ±[`MAX_COORD`] mm.
+pub(super) fn walk(tree: &usvg::Tree, to_mm: Affine, layers: &[LayerSource]) -> Result<Walked> {
+    let mut walker = Walker {
+        to_mm,
+        layer_of: layers
+            .iter()
+            .enumerate()
+            .map(|(i, l)| (l.id.as_str(), i))
+            .collect(),
+        walked: Walked {
+            drawn: Vec::new(),
+            found: vec![false; layers.len()],
+            unpainted: 0,
+            invisible: 0,
+            effects: 0,
+        },
+    };
+    walker.group(tree.root(), None)?;
+    Ok(walker.walked)
+}
+
+struct Walker<'a> {
+    to_mm: Affine,
+    layer_of: HashMap<&'a str, usize>,
+    walked: Walked,
+}
+
+impl Walker<'_> {
+    fn group(&mut self, group: &usvg::Group, layer: Option<usize>) -> Result<()> {
+        for node in group.children() {
+            match node {
+                usvg::Node::Group(g) => {
+                    let mut inner = layer;
+                    if layer.is_none() {
+                        if let Some(&i) = self.layer_of.get(g.id()) {
+                            self.walked.found[i] = true;
+                            inner = Some(i);
+                        }
+                    }
+                    if !clip_cuts_nothing(g) || g.mask().is_some() || !g.filters().is_empty() {
+                        self.walked.effects += 1;
+                    }
+                    self.group(g, inner)?;
+                }
+                usvg::Node::Path(p) => self.path(p, layer)?,
+                // Counted, with their warnings, in the pre-pass.
+                usvg::Node::Image(_) | usvg::Node::Text(_) => {}
+            }
+        }
+        Ok(())
+    }
+
+    fn path(&mut self, p: &usvg::Path, layer: Option<usize>) -> Result<()> {
+        if p.fill().is_none() && p.stroke().is_none() {
+            self.walked.unpainted += 1;
+            return Ok(());
+        }
+        if !p.is_visible() {
+            self.walked.invisible += 1;
+            return Ok(());
+        }
+        let to_page = self.to_mm * affine(p.abs_transform());
+        let mut path = BezPath::new();
+        let map = |q: usvg::tiny_skia_path::Point| -> Result<Point> {
+            let pt = to_page * Point::new(f64::from(q.x), f64::from(q.y));
+            if pt.x.abs() <= MAX_COORD && pt.y.abs() <= MAX_COORD {
+                Ok(pt)
+            } else {
+                let id = if p.id().is_empty() { "(no id)" } else { p.id() };
+                Err(Error::invalid(
+                    format!("path {id}"),
+                    format!(
+                        "point ({:.3}, {:.3}) mm is outside ±{MAX_COORD} mm",
+                        pt.x, pt.y
+                    ),
+                ))
+            }
+        };
+        for seg in p.data().segments() {
+            match seg {
+                PathSegment::MoveTo(a) => path.move_to(map(a)?),
+                PathSegment::LineTo(a) => path.line_to(map(a)?),
+                PathSegment::QuadTo(a, b) => path.quad_to(map(a)?, map(b)?),
+                PathSegment::CubicTo(a, b, c) => path.curve_to(map(a)?, map(b)?, map(c)?),
+                PathSegment::Close => path.close_path(),
+            }
+        }
+        // The drawn width: the stroke is scaled with the path (by the
+        // geometric mean for non-uniform scales).
+        let scale = to_page.determinant().abs().sqrt();
+        let stroke = p.stroke().map(|s| {
+            let width = round_size(f64::from(s.width().get()) * scale);
+            (paint_color(s.paint()), width)
+        });
+        // Downstream, fills are non-zero (like an SVG without fill-rule).
+        // An even-odd fill is redrawn as the same area's normalised
+        // contours (holes wound against their outline): every edge of an
+        // even-odd fill bounds it, so the lines drawn stay the same.
+        let even_odd = p
+            .fill()
+            .is_some_and(|f| f.rule() == usvg::FillRule::EvenOdd);
+        let path = if even_odd {
+            match Region::new(path.clone(), FillRule::EvenOdd) {
+                Ok(r) if !r.is_empty() => r.into_path(),
+                _ => path,
+            }
+        } else {
+            path
+        };
+        self.walked.drawn.push(Drawn {
+            layer,
+            id: p.id().to_string(),
+            path,
+            stroke,
+            fill: p.fill().map(|f| paint_color(f.paint())),
+        });
+        Ok(())
+    }
+}
+
+fn affine(t: usvg::Transform) -> Affine {
+    Affine::new([t.sx, t.ky, t.kx, t.sy, t.tx, t.ty].map(f64::from))
+}
+
+/// Whether the group has no clip path, or one that cuts nothing off: a
+/// single rectangle (what usvg makes for the viewport of a `symbol` or
+/// nested `svg`) around all of the group's geometry. Strokes may still be
+/// trimmed at the edge; for a plotter only the centre line counts.
+fn clip_cuts_nothing(g: &usvg::Group) -> bool {
+    let Some(clip) = g.clip_path() else {
+        return true;
+    };
+    let [usvg::Node::Path(rect)] = clip.root().children() else {
+        return false;
+    };
+    if clip.clip_path().is_some() {
+        return false;
+    }
+    let data = rect.data();
+    let b = data.bounds();
+    let on_corner = |p: &usvg::tiny_skia_path::Point| {
+        (p.x == b.left() || p.x == b.right()) && (p.y == b.top() || p.y == b.bottom())
+    };
+    if data.points().len() < 4 || !data.points().iter().all(on_corner) {
+        return false;
+    }
+    let to_canvas =
+        affine(g.abs_transform()) * affine(clip.transform()) * affine(rect.abs_transform());
+    if to_canvas.determinant().abs() < 1e-12 {
+        return false;
+    }
+    let to_clip = to_canvas.inverse();
+    let slack = 1e-4 * f64::from(b.width().max(b.height()));
+    let content = g.abs_bounding_box();
+    [
+        (content.left(), content.top()),
+        (content.right(), content.top()),
+        (content.right(), content.bottom()),
+        (content.left(), content.bottom()),
+    ]
+    .into_iter()
+    .all(|(x, y)| {
+        let p = to_clip * Point::new(f64::from(x), f64::from(y));
+        p.x >= f64::from(b.left()) - slack
+            && p.x <= f64::from(b.right()) + slack
+            && p.y >= f64::from(b.top()) - slack
+            && p.y <= f64::from(b.bottom()) + slack
+    })
+}
+
+/// A solid colour standing for a paint: the colour itself, a gradient's
+/// first stop, black for a pattern.
+fn paint_color(paint: &usvg::Paint) -> Color {
+    let c = match paint {
+        usvg::Paint::Color(c) => *c,
+        usvg::Paint::LinearGradient(g) => g
+            .stops()
+            .first()
+            .map_or(usvg::Color::black(), |s| s.color()),
+        usvg::Paint::RadialGradient(g) => g
+            .stops()
+            .first()
+            .map_or(usvg::Color::black(), |s| s.color()),
+        usvg::Paint::Pattern(_) => usvg::Color::black(),
+    };
+    Color::rgb(c.red, c.green, c.blue)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_support::{assert_rect_near, doc, import, near, only_path, paths};
+    use crate::geom::region::{FillRule, Region};
+    use crate::scene::{path_length, Color};
+    use kurbo::{PathEl, Rect, Shape};
+    use std::f64::consts::PI;
+
+    #[test]
+    fn nested_transforms_land_where_expected() {
+        let line = only_path(
+            r#"<g transform="translate(50 20)"><g transform="rotate(90)"><g transform="scale(2)">
+               <line x1="0" y1="0" x2="10" y2="5" stroke="black" transform="translate(1 0)"/>
+               </g></g></g>"#,
+        );
+        // (1, 0) → scale 2 → (2, 0) → rotate 90° → (0, 2) → translate → (50, 22);
+        // (11, 5) → (22, 10) → (-10, 22) → (40, 42).
+        let els = line.elements();
+        assert!(
+            matches!(els[0], PathEl::MoveTo(p) if near(p, (50.0, 22.0).into(), 1e-4)),
+            "{els:?}"
+        );
+        assert!(
+            matches!(els[1], PathEl::LineTo(p) if near(p, (40.0, 42.0).into(), 1e-4)),
+            "{els:?}"
+        );
+        assert_eq!(els.len(), 2);
+    }
+
+    #[test]
+    fn basic_shapes_and_arcs_have_their_analytic_lengths() {
+        let ellipse = |a: f64, b: f64| {
+            // Ramanujan's second approximation: ~1e-9 relative error here.
+            let h = ((a - b) / (a + b)).powi(2);
+            PI * (a + b) * (1.0 + 3.0 * h / (10.0 + (4.0 - 3.0 * h).sqrt()))
+        };
+        // The rotated ellipse: centre (100, 50), semi-axes 30 and 10 at 30°.
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let (ex, ey) = (30.0 * c, 30.0 * s);
+        let rotated = format!(
+            "M {} {} A 30 10 30 0 1 {} {} A 30 10 30 0 1 {} {} Z",
+            100.0 + ex,
+            50.0 + ey,
+            100.0 - ex,
+            50.0 - ey,
+            100.0 + ex,
+            50.0 + ey
+        );
+        let cases: Vec<(String, f64)> = vec![
+            (
+                r#"<rect x="10" y="10" width="40" height="20"/>"#.into(),
+                120.0,
+            ),
+            (
+                r#"<rect x="10" y="10" width="40" height="20" rx="5"/>"#.into(),
+                120.0 - 8.0 * 5.0 + 2.0 * PI * 5.0,
+            ),
+            (
+                r#"<circle cx="50" cy="50" r="10"/>"#.into(),
+                2.0 * PI * 10.0,
+            ),
+            (
+                r#"<ellipse cx="50" cy="50" rx="20" ry="10"/>"#.into(),
+                ellipse(20.0, 10.0),
+            ),
+            (r#"<line x1="0" y1="0" x2="30" y2="40"/>"#.into(), 50.0),
+            (r#"<polyline points="0,0 30,0 30,40"/>"#.into(), 70.0),
+            (r#"<polygon points="0,0 30,0 30,40"/>"#.into(), 120.0),
+            (
+                r#"<path d="M 10 50 A 20 20 0 0 1 50 50"/>"#.into(),
+                PI * 20.0,
+            ),
+            (
+                r#"<path d="m 10 80 a 5 5 0 0 0 10 0 l 0 10"/>"#.into(),
+                PI * 5.0 + 10.0,
+            ),
+            (format!(r#"<path d="{rotated}"/>"#), ellipse(30.0, 10.0)),
+        ];
+        for (shape, expected) in cases {
+            let shape = shape.replace("/>", r#" stroke="black" fill="none"/>"#);
+            let length = path_length(&only_path(&shape));
+            assert!(
+                ((length - expected) / expected).abs() < 1e-3,
+                "{shape}: length {length}, expected {expected}"
+            );
+        }
+        // Arcs are where they should be: the upper half circle from (10, 50)
+        // to (50, 50) reaches up to y = 30.
+        let arc =
+            only_path(r#"<path d="M 10 50 A 20 20 0 0 1 50 50" stroke="black" fill="none"/>"#);
+        assert_rect_near(arc.bounding_box(), Rect::new(10.0, 30.0, 50.0, 50.0), 1e-3);
+    }
+
+    #[test]
+    fn use_of_defs_and_symbol_is_resolved() {
+        let imported = import(&doc(
+            r##"<defs><path id="tri" d="M0 0 L10 0 L0 10 Z" stroke="black" fill="none"/></defs>
+               <symbol id="box" viewBox="0 0 10 10">
+                 <rect width="10" height="10" stroke="red" fill="none"/>
+               </symbol>
+               <use xlink:href="#tri" x="100" y="50"/>
+               <use href="#box" x="20" y="30" width="20" height="20"/>
+               <use href="#tri" transform="translate(150 0) scale(0.5)"/>"##,
+        ));
+        let all = paths(&imported.scene);
+        assert_eq!(all.len(), 3, "{all:?}");
+        // Document order is kept within the black pen: both triangles.
+        assert_eq!(all[0].0, 1);
+        assert_rect_near(
+            all[0].1.bounding_box(),
+            Rect::new(100.0, 50.0, 110.0, 60.0),
+            1e-4,
+        );
+        assert_rect_near(
+            all[1].1.bounding_box(),
+            Rect::new(150.0, 0.0, 155.0, 5.0),
+            1e-4,
+        );
+        // The symbol's viewBox scales it to the use's 20 × 20.
+        assert_eq!(all[2].0, 2);
+        assert_rect_near(
+            all[2].1.bounding_box(),
+            Rect::new(20.0, 30.0, 40.0, 50.0),
+            1e-4,
+        );
+        assert_eq!(imported.scene.pens[1].color, Color::rgb(255, 0, 0));
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    }
+
+    #[test]
+    fn ring_with_a_hole_stays_one_path_with_its_fill() {
+        let imported = import(&doc(
+            r##"<path fill-rule="evenodd" fill="#336699" stroke="black" stroke-width="0.2"
+                d="M0 0 H40 V40 H0 Z M10 10 H30 V30 H10 Z"/>"##,
+        ));
+        let all = paths(&imported.scene);
+        assert_eq!(all.len(), 1);
+        let (pen, ring, style) = &all[0];
+        assert_eq!(*pen, 1);
+        assert_eq!(style.fill, Some(Color::rgb(0x33, 0x66, 0x99)));
+        let moves = ring
+            .elements()
+            .iter()
+            .filter(|e| matches!(e, PathEl::MoveTo(_)))
+            .count();
+        let closes = ring
+            .elements()
+            .iter()
+            .filter(|e| matches!(e, PathEl::ClosePath))
+            .count();
+        assert_eq!((moves, closes), (2, 2), "{ring:?}");
+        assert_rect_near(ring.bounding_box(), Rect::new(0.0, 0.0, 40.0, 40.0), 1e-4);
+        let mut second = ring.elements().iter().filter_map(|e| match e {
+            PathEl::MoveTo(p) => Some(*p),
+            _ => None,
+        });
+        assert!(near(second.next_back().unwrap(), (10.0, 10.0).into(), 1e-4));
+        assert_eq!(imported.scene.pens[0].width, 0.2);
+    }
+
+    #[test]
+    fn even_odd_ring_wound_one_way_keeps_its_hole() {
+        // Both contours clockwise: solid under non-zero, a ring under
+        // even-odd (as the file says).
+        let imported = import(&doc(r##"<path fill-rule="evenodd" fill="#336699"
+                d="M0 0 H40 V40 H0 Z M10 10 H30 V10 H30 V30 H10 Z"/>"##));
+        let all = paths(&imported.scene);
+        assert_eq!(all.len(), 1);
+        let region = Region::new(all[0].1.clone(), FillRule::NonZero).unwrap();
+        assert!(
+            (region.area() - (1600.0 - 400.0)).abs() < 1e-3,
+            "{}",
+            region.area()
+        );
+        assert!(!region.contains((20.0, 20.0).into()));
+    }
+
+    #[test]
+    fn clipping_that_cuts_is_reported() {
+        let imported = import(&doc(
+            r##"<clipPath id="c"><rect x="0" y="0" width="5" height="5"/></clipPath>
+               <path d="M0 0 L10 10" stroke="black" clip-path="url(#c)"/>
+               <svg x="50" y="50" width="10" height="10" viewBox="0 0 1 1">
+                 <path d="M0 0 L1 1" stroke="black"/>
+               </svg>"##,
+        ));
+        // The path is imported whole; the nested svg's viewport clips nothing.
+        assert_eq!(imported.scene.path_count(), 2);
+        assert!(
+            (paths(&imported.scene)[0].1.bounding_box().x1 - 10.0).abs() < 1e-4,
+            "unclipped"
+        );
+        assert_eq!(
+            imported.warnings,
+            ["clip paths, masks and filters are not applied (1 group): \
+              their paths are imported whole"]
+        );
+    }
+}
