@@ -391,7 +391,7 @@ fn with_travel(scene: &Scene) -> Scene {
             .content
             .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
                 let path = t * p.path.clone();
-                for sub in plot::flatten::subpaths(&path) {
+                for sub in moyo::geom::subpath::subpaths(&path).map(|s| s.to_path()) {
                     let (Some(start), Some(end)) = (first_point(&sub), last_point(&sub)) else {
                         continue;
                     };

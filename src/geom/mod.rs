@@ -1,5 +1,6 @@
 //! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
-//! path by arc length, the "far side of a line" test and tapered outlines.
+//! path by arc length, the "far side of a line" test, tapered outlines, and
+//! the reading of a path's subpaths that every stage shares.
 //!
 //! Coordinates are page coordinates in millimetres with y pointing *down*
 //! (the SVG convention). "Left" and "right" are as seen by someone walking
@@ -11,6 +12,7 @@ pub mod ffd;
 pub mod offset;
 pub mod polylabel;
 pub mod region;
+pub mod subpath;
 
 mod bow;
 mod side;

@@ -16,9 +16,10 @@
 //!    kept in a static k-d tree with deletion ([`PointIndex`]), so this is
 //!    O(n log n). An open path can be entered at its start, or — with
 //!    [`SortOptions::reverse`] — at its end and drawn backwards. A closed
-//!    path (ending in a close-path, or whose last point *is* its first) can
-//!    be entered at its start, or — with [`SortOptions::rotate_closed`] —
-//!    at any of its on-curve vertices; it then ends where it began.
+//!    path ([`Subpath::is_closed`]: ending in a close-path, or back at its
+//!    first point) can be entered at its start, or — with
+//!    [`SortOptions::rotate_closed`] — at any of its on-curve vertices; it
+//!    then ends where it began.
 //! 2. **Improvement** ([`SortOptions::two_opt`]): passes of windowed 2-opt
 //!    (reverse a run of up to [`SortOptions::window`] consecutive paths,
 //!    drawing each of them backwards; needs `reverse`), Or-opt (move a run
@@ -37,19 +38,22 @@
 //!
 //! Ink is unchanged: every path is drawn with exactly the same segments
 //! (reversing swaps the points of each segment, rotating a closed path
-//! starts its cycle of segments elsewhere). Closed paths are never drawn
+//! starts its cycle of segments elsewhere; one that stops short of its
+//! start by rounding noise, within [`CLOSE_TOLERANCE`], gets a line across
+//! that gap, as a close-path would draw). Closed paths are never drawn
 //! backwards (a cutter may care about the direction of an outline). The
 //! order changes the paint order, so run this stage after occlusion.
 //! Everything is deterministic: ties go to the lower index.
+//!
+//! [`CLOSE_TOLERANCE`]: crate::geom::subpath::CLOSE_TOLERANCE
 
 use std::cmp::Ordering;
 
 use kurbo::{BezPath, PathEl, Point};
 use serde::{Deserialize, Serialize};
 
-use super::flatten::{
-    el_end, is_closed, reverse_open_in_place, set_paths, split_subpaths, start_point, take_paths,
-};
+use super::flatten::{el_end, reverse_open_in_place, set_paths, split_subpaths, take_paths};
+use crate::geom::subpath::{subpaths, Subpath};
 use crate::scene::{Scene, StyledPath};
 
 /// Options of [`run`] and [`order`].
@@ -165,16 +169,17 @@ impl Candidates {
         };
         for p in paths {
             c.first.push(c.points.len() as u32);
-            let start = start_point(&p.path);
-            let end = super::flatten::end_point(&p.path);
-            let looped = is_closed(&p.path) || start == end;
+            // `split_subpaths` left one subpath in every path.
+            let sub = subpaths(&p.path).next();
+            let start = sub.map_or(Point::ZERO, |s| s.start());
+            let end = sub.map_or(start, |s| s.end());
+            let looped = sub.is_some_and(|s| s.is_closed());
             c.looped.push(looped);
             c.ends.push(end);
             if looped {
-                if options.rotate_closed {
-                    loop_vertices(&p.path, &mut c.points);
-                } else {
-                    c.points.push(start);
+                match sub {
+                    Some(sub) if options.rotate_closed => loop_vertices(sub, &mut c.points),
+                    _ => c.points.push(start),
                 }
             } else {
                 // Entered at the start: candidate 0; at the end: candidate 1.
@@ -244,17 +249,14 @@ impl Candidates {
 
 /// Pushes the on-curve vertices of a loop at which it may start: the start
 /// of each segment (the closing line included).
-fn loop_vertices(path: &BezPath, out: &mut Vec<Point>) {
-    let start = start_point(path);
+fn loop_vertices(sub: Subpath, out: &mut Vec<Point>) {
+    let start = sub.start();
     out.push(start);
-    // The elements that draw: all but the move-to and a close-path.
-    let els = path.elements();
-    let drawn = &els[1..els.len() - usize::from(is_closed(path))];
-    let Some((last, inner)) = drawn.split_last() else {
+    let Some((last, inner)) = sub.drawn().split_last() else {
         return; // `M p Z`: a dot.
     };
     // The end of each segment but the last is the start of the next; the
-    // last one ends at the start, unless a close-path adds a line from it.
+    // last one ends at the start, unless a closing line goes on from it.
     out.extend(inner.iter().map(|el| el_end(*el)));
     if el_end(*last) != start {
         out.push(el_end(*last));
@@ -262,25 +264,25 @@ fn loop_vertices(path: &BezPath, out: &mut Vec<Point>) {
 }
 
 /// A loop drawn from its vertex `k` (as numbered by [`loop_vertices`]).
+/// Its closing line becomes a line of its own: the one a close-path draws,
+/// or the one across the gap (at most [`CLOSE_TOLERANCE`]) of a loop that
+/// ends next to its start rather than on it.
+///
+/// [`CLOSE_TOLERANCE`]: crate::geom::subpath::CLOSE_TOLERANCE
 fn rotate_loop(path: &BezPath, k: usize) -> BezPath {
-    if k == 0 {
+    let Some(sub) = subpaths(path).next().filter(|_| k > 0) else {
         return path.clone();
-    }
-    let closed = is_closed(path);
-    let start = start_point(path);
-    let mut segs: Vec<PathEl> = path.elements()[1..]
-        .iter()
-        .copied()
-        .filter(|el| *el != PathEl::ClosePath)
-        .collect();
-    if closed && segs.last().map(|el| el_end(*el)) != Some(start) {
+    };
+    let start = sub.start();
+    let mut segs: Vec<PathEl> = sub.drawn().to_vec();
+    if segs.last().map(|el| el_end(*el)) != Some(start) {
         segs.push(PathEl::LineTo(start));
     }
     let mut out = Vec::with_capacity(segs.len() + 2);
     out.push(PathEl::MoveTo(el_end(segs[k - 1])));
     out.extend_from_slice(&segs[k..]);
     out.extend_from_slice(&segs[..k]);
-    if closed {
+    if sub.ends_with_close() {
         out.push(PathEl::ClosePath);
     }
     BezPath::from_vec(out)
@@ -950,8 +952,9 @@ pub(crate) mod tests {
                     1 | 2 => {
                         let prev_end = out
                             .last()
-                            .filter(|q| !is_closed(q))
-                            .map(super::super::flatten::end_point);
+                            .and_then(|q| subpaths(q).next())
+                            .filter(|s| !s.ends_with_close())
+                            .map(|s| s.end());
                         let mut els = p.elements().to_vec();
                         if let Some(e) = prev_end {
                             els[0] = PathEl::MoveTo(e);
@@ -1014,7 +1017,7 @@ pub(crate) mod tests {
                 let d: f64 = out.iter().map(|p| path_length(&p.path)).sum();
                 prop_assert!((d - down).abs() <= 1e-6 * (1.0 + down));
                 // Every path still starts with its move-to and is one subpath.
-                prop_assert!(out.iter().all(|p| super::super::flatten::subpaths(&p.path).len() == 1));
+                prop_assert!(out.iter().all(|p| subpaths(&p.path).count() == 1));
             }
             prop_assert!(travel(&best) <= travel(&greedy) + 1e-9);
         }
@@ -1110,7 +1113,7 @@ pub(crate) mod tests {
             out[1].path.elements()[0],
             PathEl::MoveTo(Point::new(10.0, 10.0))
         );
-        assert!(is_closed(&out[1].path));
+        assert!(crate::geom::subpath::is_closed(&out[1].path));
         assert_eq!(seg_multiset([&out[1].path]), seg_multiset([&square]));
         let t = travel(&out);
         assert!((t - (1.0 + 1.0)).abs() < 1e-12, "{t}");
@@ -1135,6 +1138,10 @@ pub(crate) mod tests {
         );
     }
 
+    fn first(p: &BezPath) -> Subpath<'_> {
+        subpaths(p).next().unwrap()
+    }
+
     #[test]
     fn rotating_keeps_cubic_loops_exact() {
         let mut p = BezPath::new();
@@ -1142,7 +1149,7 @@ pub(crate) mod tests {
         p.curve_to((1.0, 2.0), (3.0, 2.0), (4.0, 0.0));
         p.curve_to((3.0, -2.0), (1.0, -2.0), (0.0, 0.0));
         let mut verts = Vec::new();
-        loop_vertices(&p, &mut verts);
+        loop_vertices(first(&p), &mut verts);
         assert_eq!(verts, [Point::new(0.0, 0.0), Point::new(4.0, 0.0)]);
         let r = rotate_loop(&p, 1);
         assert_eq!(r.elements()[0], PathEl::MoveTo(Point::new(4.0, 0.0)));
@@ -1152,8 +1159,47 @@ pub(crate) mod tests {
         dot.move_to((3.0, 3.0));
         dot.close_path();
         verts.clear();
-        loop_vertices(&dot, &mut verts);
+        loop_vertices(first(&dot), &mut verts);
         assert_eq!(verts, [Point::new(3.0, 3.0)]);
+    }
+
+    #[test]
+    fn a_loop_closed_within_the_tolerance_rotates_across_its_gap() {
+        use kurbo::Affine;
+        // Back to 1e-10 mm from its start, without a close-path.
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.line_to((10.0, 0.0));
+        p.line_to((10.0, 10.0));
+        p.line_to((1e-10, 0.0));
+        let mut verts = Vec::new();
+        loop_vertices(subpaths(&p).next().unwrap(), &mut verts);
+        assert_eq!(verts.len(), 4);
+        let r = rotate_loop(&p, 1);
+        assert_eq!(
+            r.elements(),
+            [
+                PathEl::MoveTo(Point::new(10.0, 0.0)),
+                PathEl::LineTo(Point::new(10.0, 10.0)),
+                PathEl::LineTo(Point::new(1e-10, 0.0)),
+                PathEl::LineTo(Point::new(0.0, 0.0)),
+                PathEl::LineTo(Point::new(10.0, 0.0)),
+            ]
+        );
+        // After a line that ends next to its far corner, it is drawn from
+        // there round to there.
+        let out = order(
+            vec![
+                styled("loop", Affine::translate((20.0, 20.0)) * p),
+                styled("line", line((0.0, 0.0), (29.0, 29.0))),
+            ],
+            &SortOptions::DEFAULT,
+        );
+        assert_eq!(out[1].id, "loop");
+        let els = out[1].path.elements();
+        assert_eq!(els[0], PathEl::MoveTo(Point::new(30.0, 30.0)));
+        assert_eq!(els.last(), Some(&PathEl::LineTo(Point::new(30.0, 30.0))));
+        assert_eq!(els.len(), 5);
     }
 
     #[test]

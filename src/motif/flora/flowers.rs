@@ -41,6 +41,7 @@ use kurbo::{
 use super::{Drawing, MotifParams};
 use crate::geom::clip::StrokeClipper;
 use crate::geom::region::{FillRule, Region};
+use crate::geom::subpath::subpaths;
 use crate::rng::RandomStream;
 
 /// Scale of the boolean work space: motif units × `WORK` (a flower is
@@ -928,21 +929,10 @@ fn refine_crossing(a: &BezPath, b: &BezPath, p: Point) -> Point {
     }
 }
 
-/// The end points of a path's subpaths.
-fn end_points(path: &BezPath) -> Vec<Point> {
-    let mut out = Vec::new();
-    for el in path.elements() {
-        match el {
-            PathEl::MoveTo(p) => out.push(*p),
-            PathEl::ClosePath => {}
-            other => {
-                if let Some(p) = other.end_point() {
-                    out.push(p);
-                }
-            }
-        }
-    }
-    out
+/// The on-curve points of a path: where it moves to and where each of its
+/// segments ends.
+fn vertices(path: &BezPath) -> impl Iterator<Item = Point> + '_ {
+    path.elements().iter().filter_map(PathEl::end_point)
 }
 
 /// The finished drawing of a layout: scaled to fill the box, the
@@ -1035,7 +1025,7 @@ fn compose(layout: &Layout) -> Drawing {
         let crossings = piece_clippers[k].clip(&shapes[i]).inside;
         let notch = crossings
             .iter()
-            .flat_map(end_points)
+            .flat_map(vertices)
             .max_by(|p, q| p.to_vec2().hypot2().total_cmp(&q.to_vec2().hypot2()));
         let Some(notch) = notch else { continue };
         let notch = refine_crossing(&shapes[i], &shapes[k], notch);
@@ -1050,16 +1040,16 @@ fn compose(layout: &Layout) -> Drawing {
             .collect();
         let Some(first) = inside.into_iter().min_by(|p, q| {
             let dist = |s: &BezPath| {
-                end_points(s)
-                    .first()
-                    .map_or(f64::MAX, |e| e.distance(notch))
+                subpaths(s)
+                    .next()
+                    .map_or(f64::MAX, |s| s.start().distance(notch))
             };
             dist(p).total_cmp(&dist(q))
         }) else {
             continue;
         };
         // From the notch itself (the clip may have cut a hair off it).
-        let Some(&end) = end_points(&first).last() else {
+        let Some(end) = vertices(&first).last() else {
             continue;
         };
         let mut seam = BezPath::new();
