@@ -177,7 +177,7 @@ impl StrokeClipper {
             for &e in band {
                 let l = self.edges[e as usize];
                 let eb = Rect::from_points(l.p0, l.p1);
-                if eb.x0 <= r.x1 && r.x0 <= eb.x1 && eb.y0 <= r.y1 && r.y0 <= eb.y1 {
+                if eb.overlaps(r) {
                     found.push(e as usize);
                 }
             }

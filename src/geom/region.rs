@@ -374,7 +374,7 @@ impl Region {
         let bounds = self.bounds();
         let cutters: Vec<&Region> = others
             .iter()
-            .filter(|r| !r.is_empty() && overlaps(bounds, r.bounds()))
+            .filter(|r| !r.is_empty() && bounds.overlaps(r.bounds()))
             .collect();
         if self.is_empty() || cutters.is_empty() {
             return self.clone();
@@ -402,7 +402,7 @@ impl Region {
         // Shortcuts: with an empty operand, or operands whose bounds do not
         // overlap, there is nothing to sweep (and normalised paths that do
         // not overlap can simply be put together).
-        if self.is_empty() || other.is_empty() || !overlaps(self.bounds(), other.bounds()) {
+        if self.is_empty() || other.is_empty() || !self.bounds().overlaps(other.bounds()) {
             return match op {
                 Op::Intersection => Region::empty(),
                 Op::Difference => self.clone(),
@@ -606,12 +606,6 @@ fn flatten_contours(path: &BezPath, tolerance: f64) -> Vec<Vec<Point>> {
     });
     finish(&mut current, &mut out);
     out
-}
-
-/// Whether two rectangles overlap (touching counts, so that shapes meeting
-/// at a point or along an edge are swept together).
-fn overlaps(a: Rect, b: Rect) -> bool {
-    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
 }
 
 /// Every coordinate finite and within ±MAX_COORD.

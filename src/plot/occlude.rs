@@ -399,11 +399,6 @@ fn closed_subpaths(path: &BezPath) -> BezPath {
     out
 }
 
-/// Whether two rectangles meet (touching counts).
-fn overlaps(a: Rect, b: Rect) -> bool {
-    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
-}
-
 fn envelope(r: Rect) -> AABB<[f64; 2]> {
     AABB::from_corners([r.x0, r.y0], [r.x1, r.y1])
 }
@@ -451,7 +446,7 @@ fn hide(
                     occluders[k].paint > paint
                         && segment_boxes
                             .iter()
-                            .any(|s| overlaps(*s, occluders[k].bounds))
+                            .any(|s| s.overlaps(occluders[k].bounds))
                 })
                 .collect();
             // Paint order, so that the result does not depend on how the

@@ -854,11 +854,6 @@ fn hide(mut paths: Vec<BezPath>, clippers: &[&StrokeClipper]) -> Vec<BezPath> {
     paths
 }
 
-/// Whether two rectangles overlap.
-fn overlaps(a: Rect, b: Rect) -> bool {
-    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
-}
-
 /// The outer contours of a normalised path (positive area), without its
 /// holes (a gap enclosed by petals is part of the silhouette) and without
 /// lines shorter than [`SPECK`].
@@ -998,7 +993,7 @@ fn compose(layout: &Layout) -> Drawing {
         let d = layout.pieces[i].depth;
         let mut hs = vec![&in_front[level_of(d)]];
         for (k, p) in layout.pieces.iter().enumerate() {
-            if k != i && !except.contains(&k) && p.depth == d && overlaps(bounds[i], bounds[k]) {
+            if k != i && !except.contains(&k) && p.depth == d && bounds[i].overlaps(bounds[k]) {
                 hs.push(&piece_clippers[k]);
             }
         }
