@@ -32,8 +32,8 @@ use kurbo::{BezPath, PathEl, Point};
 use serde::{Deserialize, Serialize};
 
 use super::flatten::{el_end, reverse_open_in_place, set_paths, split_subpaths, take_paths};
-use super::sort::PointIndex;
 use crate::geom::subpath::subpaths;
+use crate::geom::PointIndex;
 use crate::scene::{Scene, StyledPath};
 
 /// Options of [`run`] and [`merge`].
