@@ -438,13 +438,10 @@ fn with_travel(scene: &Scene) -> Scene {
             .content
             .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
                 let path = t * p.path.clone();
-                for sub in plot::flatten::subpaths(&path) {
-                    let (Some(start), Some(end)) = (first_point(&sub), last_point(&sub)) else {
-                        continue;
-                    };
+                for sub in crate::geom::subpath::subpaths(&path) {
                     travel.move_to(at);
-                    travel.line_to(start);
-                    at = end;
+                    travel.line_to(sub.start());
+                    at = sub.end();
                 }
             });
     }
@@ -466,17 +463,6 @@ fn with_travel(scene: &Scene) -> Scene {
         content,
     });
     out
-}
-
-fn first_point(p: &BezPath) -> Option<Point> {
-    p.elements().first().and_then(|e| e.end_point())
-}
-
-fn last_point(p: &BezPath) -> Option<Point> {
-    match p.elements().last()? {
-        kurbo::PathEl::ClosePath => first_point(p),
-        e => e.end_point(),
-    }
 }
 
 #[cfg(test)]

@@ -41,9 +41,10 @@
 //! and each crossing is refined once. The work is linear in the segments
 //! times the edges near each, never all against all.
 
-use kurbo::{BezPath, Line, ParamCurve, PathEl, PathSeg, Point, Rect};
+use kurbo::{BezPath, Line, ParamCurve, PathSeg, Point, Rect};
 
 use super::region::Region;
+use super::subpath::{subpaths, Subpath};
 use super::TOLERANCE;
 
 /// Cuts closer than this in a segment's parameter are merged, and pieces
@@ -67,9 +68,10 @@ pub struct Clipped {
 /// non-positive means [`TOLERANCE`]).
 ///
 /// Each subpath of the stroke is cut where it crosses the boundary; runs of
-/// pieces on the same side are joined into one path. A closed subpath that
-/// never crosses stays closed; one that does is split into open paths (the
-/// run through its start point is joined across it).
+/// pieces on the same side are joined into one path. A subpath that ends
+/// with a close-path and never crosses stays closed; one that does is split
+/// into open paths (the run through its start point is joined across it).
+/// Subpaths are read as [`super::subpath`] says.
 ///
 /// To clip many strokes by one region, make a [`StrokeClipper`] once.
 pub fn clip_stroke(stroke: &BezPath, region: &Region, tolerance: f64) -> Clipped {
@@ -175,7 +177,7 @@ impl StrokeClipper {
             for &e in band {
                 let l = self.edges[e as usize];
                 let eb = Rect::from_points(l.p0, l.p1);
-                if eb.x0 <= r.x1 && r.x0 <= eb.x1 && eb.y0 <= r.y1 && r.y0 <= eb.y1 {
+                if eb.overlaps(r) {
                     found.push(e as usize);
                 }
             }
@@ -190,16 +192,16 @@ impl StrokeClipper {
     pub fn clip(&self, stroke: &BezPath) -> Clipped {
         let mut out = Clipped::default();
         for sub in subpaths(stroke) {
-            self.clip_subpath(&sub, &mut out);
+            self.clip_subpath(sub, &mut out);
         }
         out
     }
 
-    fn clip_subpath(&self, sub: &Subpath, out: &mut Clipped) {
+    fn clip_subpath(&self, sub: Subpath, out: &mut Clipped) {
         // Pieces in order: (segment piece, inside?).
         let mut pieces: Vec<(PathSeg, bool)> = Vec::new();
-        for seg in &sub.segments {
-            let cuts = self.cuts(seg);
+        for seg in sub.segments() {
+            let cuts = self.cuts(&seg);
             for w in cuts.windows(2) {
                 let (t0, t1) = (w[0], w[1]);
                 let inside = self.contains(seg.eval(0.5 * (t0 + t1)));
@@ -218,7 +220,11 @@ impl StrokeClipper {
             }
         }
         let whole = runs.len() == 1;
-        if sub.closed && !whole && runs[0].1 == runs[runs.len() - 1].1 {
+        // Only a written close-path makes a run go on through the start:
+        // a stroke that merely comes back to its start is cut there, as
+        // it is drawn.
+        let closed = sub.ends_with_close();
+        if closed && !whole && runs[0].1 == runs[runs.len() - 1].1 {
             // The last run goes on through the start point into the first.
             let (first, _) = runs.remove(0);
             if let Some((last, _)) = runs.last_mut() {
@@ -235,7 +241,7 @@ impl StrokeClipper {
                     PathSeg::Cubic(c) => path.curve_to(c.p1, c.p2, c.p3),
                 }
             }
-            if whole && sub.closed {
+            if whole && closed {
                 path.close_path();
             }
             if inside {
@@ -494,65 +500,13 @@ fn refine(c: &Coefs, a: f64, b: f64, start_positive: bool) -> f64 {
     0.5 * (a + b)
 }
 
-/// One subpath: its segments (a closing line included) and whether it was
-/// closed.
-struct Subpath {
-    segments: Vec<PathSeg>,
-    closed: bool,
-}
-
-fn subpaths(path: &BezPath) -> Vec<Subpath> {
-    let mut out = Vec::new();
-    let mut segments = Vec::new();
-    let mut start = Point::ORIGIN;
-    let mut current = Point::ORIGIN;
-    let flush = |segments: &mut Vec<PathSeg>, closed: bool, out: &mut Vec<Subpath>| {
-        if !segments.is_empty() {
-            out.push(Subpath {
-                segments: std::mem::take(segments),
-                closed,
-            });
-        }
-    };
-    for el in path.elements() {
-        match *el {
-            PathEl::MoveTo(p) => {
-                flush(&mut segments, false, &mut out);
-                start = p;
-                current = p;
-            }
-            PathEl::LineTo(p) => {
-                segments.push(PathSeg::Line(Line::new(current, p)));
-                current = p;
-            }
-            PathEl::QuadTo(a, p) => {
-                segments.push(PathSeg::Quad(kurbo::QuadBez::new(current, a, p)));
-                current = p;
-            }
-            PathEl::CurveTo(a, b, p) => {
-                segments.push(PathSeg::Cubic(kurbo::CubicBez::new(current, a, b, p)));
-                current = p;
-            }
-            PathEl::ClosePath => {
-                if current != start {
-                    segments.push(PathSeg::Line(Line::new(current, start)));
-                }
-                flush(&mut segments, true, &mut out);
-                current = start;
-            }
-        }
-    }
-    flush(&mut segments, false, &mut out);
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geom::region::tests::{arb_region, circle, rect};
     use crate::geom::region::FillRule;
     use crate::scene::path_length;
-    use kurbo::{Affine, Circle, CubicBez, ParamCurveNearest, Shape};
+    use kurbo::{Affine, Circle, CubicBez, ParamCurveNearest, PathEl, Shape};
     use proptest::prelude::*;
 
     fn total(paths: &[BezPath]) -> f64 {

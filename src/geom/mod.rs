@@ -1,5 +1,7 @@
 //! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
-//! path by arc length, the "far side of a line" test and tapered outlines.
+//! path by arc length, the "far side of a line" test, tapered outlines, a
+//! nearest-point index, and the reading of a path's subpaths that every
+//! stage shares.
 //!
 //! Coordinates are page coordinates in millimetres with y pointing *down*
 //! (the SVG convention). "Left" and "right" are as seen by someone walking
@@ -11,14 +13,17 @@ pub mod ffd;
 pub mod offset;
 pub mod polylabel;
 pub mod region;
+pub mod subpath;
 
 mod bow;
+mod point_index;
 mod side;
 mod spline;
 mod taper;
 mod walk;
 
 pub use bow::bowed_cubic;
+pub use point_index::PointIndex;
 pub use side::SideTest;
 pub use spline::{natural_spline, natural_spline_cubics};
 pub use taper::tapered_outline;

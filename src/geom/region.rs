@@ -33,6 +33,7 @@ use i_overlay::float::single::SingleFloatOverlay;
 use linesweeper::sweep::Correctness;
 use linesweeper::topology::{BinaryWindingNumber, Contours, OneOfTwo, Topology, WindingNumber};
 
+use super::subpath::subpaths;
 use crate::error::{Error, Result};
 use crate::units::MAX_COORD;
 
@@ -253,9 +254,9 @@ impl Region {
         // the smallest outer contour around them. A hole is tested at the
         // middle of its first segment: it may touch its outer contour at a
         // point, not along a segment.
-        let kept: Vec<(BezPath, f64)> = split_contours(&self.path)
-            .into_iter()
+        let kept: Vec<(BezPath, f64)> = subpaths(&self.path)
             .map(|c| {
+                let c = c.to_path();
                 let a = c.area();
                 (c, a)
             })
@@ -373,7 +374,7 @@ impl Region {
         let bounds = self.bounds();
         let cutters: Vec<&Region> = others
             .iter()
-            .filter(|r| !r.is_empty() && overlaps(bounds, r.bounds()))
+            .filter(|r| !r.is_empty() && bounds.overlaps(r.bounds()))
             .collect();
         if self.is_empty() || cutters.is_empty() {
             return self.clone();
@@ -401,7 +402,7 @@ impl Region {
         // Shortcuts: with an empty operand, or operands whose bounds do not
         // overlap, there is nothing to sweep (and normalised paths that do
         // not overlap can simply be put together).
-        if self.is_empty() || other.is_empty() || !overlaps(self.bounds(), other.bounds()) {
+        if self.is_empty() || other.is_empty() || !self.bounds().overlaps(other.bounds()) {
             return match op {
                 Op::Intersection => Region::empty(),
                 Op::Difference => self.clone(),
@@ -607,26 +608,6 @@ fn flatten_contours(path: &BezPath, tolerance: f64) -> Vec<Vec<Point>> {
     out
 }
 
-/// The subpaths of a path, each on its own.
-fn split_contours(path: &BezPath) -> Vec<BezPath> {
-    let mut out: Vec<BezPath> = Vec::new();
-    for el in path.elements() {
-        if let PathEl::MoveTo(_) = el {
-            out.push(BezPath::new());
-        }
-        if let Some(c) = out.last_mut() {
-            c.push(*el);
-        }
-    }
-    out
-}
-
-/// Whether two rectangles overlap (touching counts, so that shapes meeting
-/// at a point or along an edge are swept together).
-fn overlaps(a: Rect, b: Rect) -> bool {
-    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
-}
-
 /// Every coordinate finite and within ±MAX_COORD.
 pub(crate) fn check_coordinates(path: &BezPath) -> Result<()> {
     for el in path.elements() {
@@ -653,41 +634,17 @@ pub(crate) fn check_coordinates(path: &BezPath) -> Result<()> {
 }
 
 /// The path with every subpath closed (a `ClosePath` appended where
-/// missing) and lone move-tos dropped. A path that does not start with a
-/// move-to starts at the origin, as kurbo assumes.
+/// missing), as an SVG fill closes them; subpaths that draw nothing (a lone
+/// move-to, a dot `M p Z`) dropped.
 fn close_subpaths(path: &BezPath) -> BezPath {
     let mut out = BezPath::new();
-    let mut open = false; // a subpath with at least one segment is open
-    let mut pending: Option<Point> = None; // start of the current subpath
-    for el in path.elements() {
-        match *el {
-            PathEl::MoveTo(p) => {
-                if open {
-                    out.close_path();
-                    open = false;
-                }
-                pending = Some(p);
-            }
-            PathEl::ClosePath => {
-                if open {
-                    out.close_path();
-                    open = false;
-                }
-            }
-            seg => {
-                if !open {
-                    // After a close, a segment without a move-to starts
-                    // where the closed subpath started.
-                    let start = pending.unwrap_or(Point::ORIGIN);
-                    pending = Some(start);
-                    out.move_to(start);
-                    open = true;
-                }
-                out.push(seg);
-            }
+    for sub in subpaths(path) {
+        let drawn = sub.drawn();
+        if drawn.is_empty() {
+            continue;
         }
-    }
-    if open {
+        out.move_to(sub.start());
+        out.extend(drawn.iter().copied());
         out.close_path();
     }
     out

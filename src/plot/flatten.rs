@@ -59,6 +59,8 @@ use std::collections::BTreeSet;
 
 use kurbo::{Affine, BezPath, PathEl, Point};
 
+use crate::geom::subpath::subpaths;
+
 use crate::scene::{Group, Layer, Node, Scene, StyledPath};
 use crate::units::Margins;
 
@@ -217,10 +219,11 @@ pub fn set_paths(layer: &mut Layer, paths: Vec<StyledPath>) {
 }
 
 /// Splits every path with several subpaths into one path per subpath, in
-/// order. The first subpath keeps the id; the k-th further one gets
-/// `{id}.{k}` (k from 1). Styles are copied. Subpaths that draw nothing (a
-/// lone move-to) are dropped, and so are paths left empty; see
-/// [`subpaths`] for the exact rules.
+/// order, each *normalised*: its own move-to, then the elements that draw
+/// (see [`crate::geom::subpath`] for the exact rules). The first subpath
+/// keeps the id; the k-th further one gets `{id}.{k}` (k from 1). Styles
+/// are copied. Subpaths that draw nothing (a lone move-to) are dropped,
+/// and so are paths left empty.
 pub fn split_subpaths(paths: Vec<StyledPath>) -> Vec<StyledPath> {
     let mut out = Vec::with_capacity(paths.len());
     for p in paths {
@@ -228,14 +231,14 @@ pub fn split_subpaths(paths: Vec<StyledPath>) -> Vec<StyledPath> {
             out.push(p);
             continue;
         }
-        for (k, sub) in subpaths(&p.path).into_iter().enumerate() {
+        for (k, sub) in subpaths(&p.path).enumerate() {
             out.push(StyledPath {
                 id: if k == 0 {
                     p.id.clone()
                 } else {
                     format!("{}.{k}", p.id)
                 },
-                path: sub,
+                path: sub.to_path(),
                 style: p.style.clone(),
             });
         }
@@ -243,73 +246,8 @@ pub fn split_subpaths(paths: Vec<StyledPath>) -> Vec<StyledPath> {
     out
 }
 
-/// The subpaths of `path`, each as its own normalised path: it starts with
-/// a move-to, has at least one more element, and a close-path, if any, is
-/// its last element. Drawing elements after a close-path without a move-to
-/// start a new subpath at the closed one's start (the SVG rule). Lone
-/// move-tos and repeated close-paths draw nothing and are dropped; a
-/// subpath `M p Z` (a dot) is kept.
-pub fn subpaths(path: &BezPath) -> Vec<BezPath> {
-    let mut out = Vec::new();
-    let mut cur: Vec<PathEl> = Vec::new();
-    let mut start = Point::ZERO;
-    let flush = |cur: &mut Vec<PathEl>, out: &mut Vec<BezPath>| {
-        if cur.len() > 1 {
-            out.push(BezPath::from_vec(std::mem::take(cur)));
-        } else {
-            cur.clear();
-        }
-    };
-    for &el in path.elements() {
-        match el {
-            PathEl::MoveTo(p) => {
-                flush(&mut cur, &mut out);
-                start = p;
-                cur.push(el);
-            }
-            PathEl::ClosePath => {
-                if cur.is_empty() {
-                    // A repeated close-path, or one at the very beginning.
-                    continue;
-                }
-                cur.push(el);
-                flush(&mut cur, &mut out);
-            }
-            _ => {
-                if cur.is_empty() {
-                    cur.push(PathEl::MoveTo(start));
-                }
-                cur.push(el);
-            }
-        }
-    }
-    flush(&mut cur, &mut out);
-    out
-}
-
-/// Whether a normalised subpath ends with a close-path.
-pub(crate) fn is_closed(path: &BezPath) -> bool {
-    matches!(path.elements().last(), Some(PathEl::ClosePath))
-}
-
-/// The first point of a normalised subpath.
-pub(crate) fn start_point(path: &BezPath) -> Point {
-    match path.elements().first() {
-        Some(PathEl::MoveTo(p)) => *p,
-        _ => Point::ZERO,
-    }
-}
-
-/// Where the pen is after drawing a normalised subpath (its start when it
-/// is closed).
-pub(crate) fn end_point(path: &BezPath) -> Point {
-    match path.elements().last() {
-        Some(&el) if el != PathEl::ClosePath => el_end(el),
-        _ => start_point(path),
-    }
-}
-
-/// An open normalised subpath drawn the other way round. Exact: the same
+/// An open normalised subpath (see [`split_subpaths`]) drawn the other way
+/// round. Exact: the same
 /// points in reverse order, so every segment is the same curve.
 pub(crate) fn reverse_open(path: &BezPath) -> BezPath {
     let mut out = path.clone();
@@ -319,8 +257,8 @@ pub(crate) fn reverse_open(path: &BezPath) -> BezPath {
 
 /// [`reverse_open`] without allocating.
 pub(crate) fn reverse_open_in_place(path: &mut BezPath) {
-    debug_assert!(!is_closed(path));
-    let end = end_point(path);
+    debug_assert!(subpaths(path).all(|s| !s.ends_with_close()));
+    let end = path.elements().last().map_or(Point::ZERO, |el| el_end(*el));
     let els = path.elements_mut();
     // Element i (from the end of element i - 1 to its own end) becomes the
     // way back: its control points swapped, ending where it started.
@@ -355,15 +293,10 @@ pub(crate) fn el_end(el: PathEl) -> Point {
 /// that splitting does not copy it).
 fn is_single_subpath(path: &BezPath) -> bool {
     let els = path.elements();
-    if els.len() < 2 || !matches!(els[0], PathEl::MoveTo(_)) {
-        return false;
-    }
-    let last = els.len() - 1;
-    els[1..].iter().enumerate().all(|(i, el)| match el {
-        PathEl::MoveTo(_) => false,
-        PathEl::ClosePath => i + 1 == last,
-        _ => true,
-    })
+    matches!(els.first(), Some(PathEl::MoveTo(_)))
+        && subpaths(path)
+            .next()
+            .is_some_and(|s| s.body().len() + 1 == els.len())
 }
 
 /// `path` mapped by `t`, without copying when `t` is the identity.
@@ -514,34 +447,6 @@ mod tests {
         set_paths(&mut l, paths);
         assert!(is_flat(&l));
         assert_eq!(l.content.id, "front");
-    }
-
-    #[test]
-    fn subpaths_follow_svg_rules() {
-        let mut p = BezPath::new();
-        p.move_to((0.0, 0.0));
-        p.line_to((1.0, 0.0));
-        p.line_to((1.0, 1.0));
-        p.close_path();
-        p.close_path(); // draws nothing
-        p.line_to((5.0, 5.0)); // new subpath from (0,0)
-        p.move_to((9.0, 9.0)); // lone move-to
-        p.move_to((7.0, 7.0));
-        p.close_path(); // a dot
-        let subs = subpaths(&p);
-        assert_eq!(subs.len(), 3);
-        assert_eq!(subs[0].elements().len(), 4);
-        assert_eq!(
-            subs[1].elements(),
-            [
-                PathEl::MoveTo(Point::new(0.0, 0.0)),
-                PathEl::LineTo(Point::new(5.0, 5.0))
-            ]
-        );
-        assert_eq!(
-            subs[2].elements(),
-            [PathEl::MoveTo(Point::new(7.0, 7.0)), PathEl::ClosePath]
-        );
     }
 
     #[test]
@@ -735,8 +640,9 @@ mod tests {
         p.quad_to((2.0, 1.0), (3.0, 0.0));
         p.curve_to((4.0, 1.0), (5.0, 2.0), (6.0, 0.0));
         let r = reverse_open(&p);
-        assert_eq!(start_point(&r), Point::new(6.0, 0.0));
-        assert_eq!(end_point(&r), Point::new(0.0, 0.0));
+        let sub = subpaths(&r).next().unwrap();
+        assert_eq!(sub.start(), Point::new(6.0, 0.0));
+        assert_eq!(sub.end(), Point::new(0.0, 0.0));
         assert_eq!(reverse_open(&r), p);
     }
 }

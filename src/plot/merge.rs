@@ -23,17 +23,17 @@
 //! points in reverse order), and the pen-down length grows by at most
 //! `tolerance` per join.
 //!
-//! Not merged: closed paths (ending in a close-path; joining would open
-//! them) and filled paths (the fill would change); they are kept as they
-//! are, at their place in the order.
+//! Not merged: paths that end with a close-path (joining would drop it;
+//! a loop drawn back to its start without one may be joined, which
+//! changes no ink) and filled paths (the fill would change); they are kept
+//! as they are, at their place in the order.
 
 use kurbo::{BezPath, PathEl, Point};
 use serde::{Deserialize, Serialize};
 
-use super::flatten::{
-    end_point, is_closed, reverse_open_in_place, set_paths, split_subpaths, start_point, take_paths,
-};
-use super::sort::PointIndex;
+use super::flatten::{el_end, reverse_open_in_place, set_paths, split_subpaths, take_paths};
+use crate::geom::subpath::subpaths;
+use crate::geom::PointIndex;
 use crate::scene::{Scene, StyledPath};
 
 /// Options of [`run`] and [`merge`].
@@ -97,10 +97,17 @@ pub fn merge(paths: Vec<StyledPath>, options: &MergeOptions) -> Vec<StyledPath> 
     let tol2 = tolerance * tolerance;
     let mergeable: Vec<bool> = paths
         .iter()
-        .map(|p| !is_closed(&p.path) && p.style.fill.is_none())
+        .map(|p| subpaths(&p.path).all(|s| !s.ends_with_close()) && p.style.fill.is_none())
         .collect();
-    let starts: Vec<Point> = paths.iter().map(|p| start_point(&p.path)).collect();
-    let ends: Vec<Point> = paths.iter().map(|p| end_point(&p.path)).collect();
+    // `split_subpaths` left one subpath in every path.
+    let (starts, ends): (Vec<Point>, Vec<Point>) = paths
+        .iter()
+        .map(|p| {
+            subpaths(&p.path)
+                .next()
+                .map_or((Point::ZERO, Point::ZERO), |s| (s.start(), s.end()))
+        })
+        .unzip();
     let mut free = FreeEnds::new(&starts, &ends, tol2, options.reverse);
     for (i, _) in mergeable.iter().enumerate().filter(|(_, &m)| !m) {
         free.take(i);
@@ -303,16 +310,18 @@ fn crowded(points: &[Point], tol: f64) -> Vec<bool> {
 /// Appends the single subpath `piece` to `joined`, with a line across the
 /// gap if its start is not where `joined` ends.
 fn append(joined: &mut BezPath, piece: &BezPath) {
-    let els = piece.elements();
-    if joined.elements().is_empty() {
-        joined.extend(els.iter().copied());
+    let Some(sub) = subpaths(piece).next() else {
         return;
+    };
+    match joined.elements().last() {
+        None => joined.extend(sub.elements()),
+        Some(&last) => {
+            if el_end(last) != sub.start() {
+                joined.push(PathEl::LineTo(sub.start()));
+            }
+            joined.extend(sub.body().iter().copied());
+        }
     }
-    let start = start_point(piece);
-    if end_point(joined) != start {
-        joined.push(PathEl::LineTo(start));
-    }
-    joined.extend(els[1..].iter().copied());
 }
 
 #[cfg(test)]
@@ -339,7 +348,7 @@ mod tests {
             let out = merge(input.clone(), &options);
 
             // Every output path is one subpath, ids are the input's, once each.
-            prop_assert!(out.iter().all(|p| super::super::flatten::subpaths(&p.path).len() == 1));
+            prop_assert!(out.iter().all(|p| subpaths(&p.path).count() == 1));
             let mut ids: Vec<&str> = out.iter().map(|p| p.id.as_str()).collect();
             ids.sort_unstable();
             ids.dedup();

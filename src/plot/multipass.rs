@@ -2,19 +2,21 @@
 //! cutter that needs several passes through thick material.
 //!
 //! Each subpath is repeated in place without lifting the pen: a closed
-//! subpath goes round its loop [`MultipassOptions::passes`] times (one
-//! close-path at the end); an open one is drawn forwards, then backwards,
+//! subpath ([`Subpath::is_closed`]) goes round its loop
+//! [`MultipassOptions::passes`] times (with one close-path at the end if it
+//! had one); an open one is drawn forwards, then backwards,
 //! then forwards again, and so on, so every pass starts where the previous
 //! one ended. Pen-down length is multiplied by the number of passes; paths,
 //! ids and pen-up travel are unchanged. Works on any layer, in the
 //! coordinates of the flat scene (see [`super::flatten`]).
+//!
+//! [`Subpath::is_closed`]: crate::geom::subpath::Subpath::is_closed
 
 use kurbo::{BezPath, PathEl};
 use serde::{Deserialize, Serialize};
 
-use super::flatten::{
-    el_end, is_closed, reverse_open, set_paths, start_point, subpaths, take_paths,
-};
+use super::flatten::{el_end, reverse_open, set_paths, take_paths};
+use crate::geom::subpath::subpaths;
 use crate::scene::Scene;
 
 /// Options of [`run`] and [`repeat_path`].
@@ -67,24 +69,26 @@ pub fn repeat_path(path: &BezPath, options: &MultipassOptions) -> BezPath {
     }
     let mut out: Vec<PathEl> = Vec::with_capacity(path.elements().len() * passes);
     for sub in subpaths(path) {
-        let els = sub.elements();
-        if is_closed(&sub) {
-            // Round the loop: the close-path's line made explicit for all
-            // passes but the last.
-            let start = start_point(&sub);
-            let body = &els[1..els.len() - 1];
+        if sub.is_closed() {
+            // Round the loop: the closing line made explicit for all passes
+            // but the last, and a close-path at the end if it had one.
+            let start = sub.start();
+            let body = sub.drawn();
             let ends_at_start = !matches!(body.last(), Some(el) if el_end(*el) != start);
-            out.push(els[0]);
+            out.push(PathEl::MoveTo(start));
             for pass in 0..passes {
                 out.extend_from_slice(body);
                 if pass + 1 < passes && !ends_at_start {
                     out.push(PathEl::LineTo(start));
                 }
             }
-            out.push(PathEl::ClosePath);
+            if sub.ends_with_close() {
+                out.push(PathEl::ClosePath);
+            }
         } else {
+            let sub = sub.to_path();
             let back = reverse_open(&sub);
-            out.extend_from_slice(els);
+            out.extend_from_slice(sub.elements());
             for pass in 1..passes {
                 let next = if pass % 2 == 1 { &back } else { &sub };
                 out.extend_from_slice(&next.elements()[1..]);
@@ -114,7 +118,7 @@ mod tests {
         let r = repeat_path(&p, &MultipassOptions::DEFAULT.with_passes(3));
         assert!((path_length(&r) - 3.0 * path_length(&p)).abs() < 1e-6);
         assert_eq!(r.elements().len(), 1 + 3 * 2);
-        assert_eq!(super::super::flatten::end_point(&r), Point::new(10.0, 6.0));
+        assert_eq!(subpaths(&r).next().unwrap().end(), Point::new(10.0, 6.0));
         assert_eq!(
             r.elements()[3],
             PathEl::CurveTo((12.0, 4.0).into(), (12.0, 2.0).into(), (10.0, 0.0).into())
@@ -127,13 +131,24 @@ mod tests {
         let circle = Circle::new((50.0, 50.0), 10.0).to_path(1e-3);
         let r = repeat_path(&circle, &twice());
         assert!((path_length(&r) - 2.0 * path_length(&circle)).abs() < 1e-6);
-        assert_eq!(subpaths(&r).len(), 1);
+        assert_eq!(subpaths(&r).count(), 1);
         let mut tri = BezPath::new();
         tri.move_to((0.0, 0.0));
         tri.line_to((3.0, 0.0));
         tri.line_to((3.0, 4.0));
         tri.close_path();
         let r = repeat_path(&tri, &twice());
+        assert!((path_length(&r) - 24.0).abs() < 1e-12);
+        // Back at its start without a close-path: round again, no
+        // close-path added.
+        let mut back = BezPath::new();
+        back.move_to((0.0, 0.0));
+        back.line_to((3.0, 0.0));
+        back.line_to((3.0, 4.0));
+        back.line_to((0.0, 0.0));
+        let r = repeat_path(&back, &twice());
+        assert_eq!(r.elements().len(), 7);
+        assert_eq!(r.elements()[4], PathEl::LineTo((3.0, 0.0).into()));
         assert!((path_length(&r) - 24.0).abs() < 1e-12);
     }
 

@@ -13,7 +13,8 @@
 //! With [`OccludeOptions::closed_paths_occlude`] (the default) an unfilled
 //! path hides too: the area its closed subpaths enclose under the non-zero
 //! rule — an outline means a solid shape to a plotter artist. A subpath is
-//! closed when it ends with a close-path or returns to its start point.
+//! closed when it ends with a close-path or returns to its start point
+//! ([`Subpath::is_closed`](crate::geom::subpath::Subpath::is_closed)).
 //! Holes are holes: a ring drawn as an outer contour and an inner contour
 //! wound the other way hides nothing seen through its hole (two contours
 //! wound the same way make a solid disc, as in an SVG fill). Shapes that
@@ -79,7 +80,7 @@
 
 use std::cell::OnceCell;
 
-use kurbo::{Affine, BezPath, ParamCurveExtrema, PathEl, Point, Rect};
+use kurbo::{Affine, BezPath, ParamCurveExtrema, Rect};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 use serde::{Deserialize, Serialize};
@@ -87,6 +88,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::geom::clip::StrokeClipper;
 use crate::geom::region::{check_coordinates, FillRule, Region};
+use crate::geom::subpath::{is_closed, subpaths};
 use crate::geom::TOLERANCE;
 use crate::scene::{path_length, Group, Layer, Node, Scene, Style, StyledPath};
 
@@ -103,10 +105,6 @@ pub const FILLS_LAYER_ID: &str = "preview-fills";
 /// Its name: a `%` label, so it is kept in the SVG and shown in the
 /// preview but never plotted ([`Layer::is_plotted`]).
 pub const FILLS_LAYER_NAME: &str = "%preview fills";
-
-/// A subpath whose end lies this close (mm, on the page) to its start
-/// counts as closed even without a close-path.
-const CLOSE_EPS: f64 = 1e-9;
 
 /// Options of [`run`].
 #[non_exhaustive]
@@ -390,80 +388,15 @@ fn occluding_region(p: &Painted, o: &OccludeOptions) -> Option<Region> {
     Region::new(shape, FillRule::NonZero).ok()
 }
 
-/// The subpaths of `path`, each with its elements and whether it is
-/// closed (ends with a close-path or at its start point).
-fn split_subpaths(path: &BezPath) -> Vec<(Vec<PathEl>, bool)> {
-    let mut out: Vec<(Vec<PathEl>, bool)> = Vec::new();
-    let mut current: Vec<PathEl> = Vec::new();
-    let finish = |current: &mut Vec<PathEl>, out: &mut Vec<(Vec<PathEl>, bool)>| {
-        if current.len() < 2 {
-            current.clear();
-            return;
-        }
-        let ends_closed = matches!(current.last(), Some(PathEl::ClosePath));
-        let start = match current[0] {
-            PathEl::MoveTo(p) => p,
-            _ => Point::ORIGIN,
-        };
-        let end = current
-            .iter()
-            .rev()
-            .find_map(|el| match *el {
-                PathEl::MoveTo(p) | PathEl::LineTo(p) => Some(p),
-                PathEl::QuadTo(_, p) | PathEl::CurveTo(_, _, p) => Some(p),
-                PathEl::ClosePath => None,
-            })
-            .unwrap_or(start);
-        let closed = ends_closed || (end - start).hypot() <= CLOSE_EPS;
-        out.push((std::mem::take(current), closed));
-    };
-    for el in path.elements() {
-        match el {
-            PathEl::MoveTo(_) => {
-                finish(&mut current, &mut out);
-                current.push(*el);
-            }
-            PathEl::ClosePath => {
-                current.push(*el);
-                finish(&mut current, &mut out);
-            }
-            _ => {
-                if current.is_empty() {
-                    current.push(PathEl::MoveTo(Point::ORIGIN));
-                }
-                current.push(*el);
-            }
-        }
-    }
-    finish(&mut current, &mut out);
-    out
-}
-
 /// The closed subpaths of `path`, each ending with a close-path.
 fn closed_subpaths(path: &BezPath) -> BezPath {
     let mut out = BezPath::new();
-    for (els, closed) in split_subpaths(path) {
-        if closed {
-            for el in els {
-                if el != PathEl::ClosePath {
-                    out.push(el);
-                }
-            }
-            out.close_path();
-        }
+    for sub in subpaths(path).filter(|s| s.is_closed()) {
+        out.move_to(sub.start());
+        out.extend(sub.drawn().iter().copied());
+        out.close_path();
     }
     out
-}
-
-/// Whether every subpath of `path` is closed (and it has one).
-fn is_closed_path(path: &BezPath) -> bool {
-    let subs = split_subpaths(path);
-    !subs.is_empty() && subs.iter().all(|(_, closed)| *closed)
-}
-
-/// Whether two rectangles meet (touching counts).
-fn overlaps(a: Rect, b: Rect) -> bool {
-    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
 }
 
 fn envelope(r: Rect) -> AABB<[f64; 2]> {
@@ -513,7 +446,7 @@ fn hide(
                     occluders[k].paint > paint
                         && segment_boxes
                             .iter()
-                            .any(|s| overlaps(*s, occluders[k].bounds))
+                            .any(|s| s.overlaps(occluders[k].bounds))
                 })
                 .collect();
             // Paint order, so that the result does not depend on how the
@@ -664,7 +597,7 @@ fn merge_into_silhouette(group: &mut Group, to_page: Affine) {
     let mut style = None;
     for (k, child) in group.children.iter().enumerate() {
         let Node::Path(p) = child else { continue };
-        if !is_closed_path(&p.path) {
+        if !is_closed(&p.path) {
             continue;
         }
         let Ok(region) = Region::new(to_page * p.path.clone(), FillRule::NonZero) else {
@@ -717,7 +650,7 @@ mod tests {
     use super::*;
     use crate::scene::{Color, Layer, Pen, Style};
     use crate::units::{Margins, Orientation, Page, PaperName};
-    use kurbo::{Circle, Line, ParamCurve, ParamCurveNearest, Shape};
+    use kurbo::{Circle, Line, ParamCurve, ParamCurveNearest, PathEl, Point, Shape};
     use proptest::prelude::*;
     use std::collections::HashMap;
 

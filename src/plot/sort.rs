@@ -16,9 +16,10 @@
 //!    kept in a static k-d tree with deletion ([`PointIndex`]), so this is
 //!    O(n log n). An open path can be entered at its start, or — with
 //!    [`SortOptions::reverse`] — at its end and drawn backwards. A closed
-//!    path (ending in a close-path, or whose last point *is* its first) can
-//!    be entered at its start, or — with [`SortOptions::rotate_closed`] —
-//!    at any of its on-curve vertices; it then ends where it began.
+//!    path ([`Subpath::is_closed`]: ending in a close-path, or back at its
+//!    first point) can be entered at its start, or — with
+//!    [`SortOptions::rotate_closed`] — at any of its on-curve vertices; it
+//!    then ends where it began.
 //! 2. **Improvement** ([`SortOptions::two_opt`]): passes of windowed 2-opt
 //!    (reverse a run of up to [`SortOptions::window`] consecutive paths,
 //!    drawing each of them backwards; needs `reverse`), Or-opt (move a run
@@ -37,19 +38,21 @@
 //!
 //! Ink is unchanged: every path is drawn with exactly the same segments
 //! (reversing swaps the points of each segment, rotating a closed path
-//! starts its cycle of segments elsewhere). Closed paths are never drawn
+//! starts its cycle of segments elsewhere; one that stops short of its
+//! start by rounding noise, within [`CLOSE_TOLERANCE`], gets a line across
+//! that gap, as a close-path would draw). Closed paths are never drawn
 //! backwards (a cutter may care about the direction of an outline). The
 //! order changes the paint order, so run this stage after occlusion.
 //! Everything is deterministic: ties go to the lower index.
-
-use std::cmp::Ordering;
+//!
+//! [`CLOSE_TOLERANCE`]: crate::geom::subpath::CLOSE_TOLERANCE
 
 use kurbo::{BezPath, PathEl, Point};
 use serde::{Deserialize, Serialize};
 
-use super::flatten::{
-    el_end, is_closed, reverse_open_in_place, set_paths, split_subpaths, start_point, take_paths,
-};
+use super::flatten::{el_end, reverse_open_in_place, set_paths, split_subpaths, take_paths};
+use crate::geom::subpath::{subpaths, Subpath};
+use crate::geom::PointIndex;
 use crate::scene::{Scene, StyledPath};
 
 /// Options of [`run`] and [`order`].
@@ -165,16 +168,17 @@ impl Candidates {
         };
         for p in paths {
             c.first.push(c.points.len() as u32);
-            let start = start_point(&p.path);
-            let end = super::flatten::end_point(&p.path);
-            let looped = is_closed(&p.path) || start == end;
+            // `split_subpaths` left one subpath in every path.
+            let sub = subpaths(&p.path).next();
+            let start = sub.map_or(Point::ZERO, |s| s.start());
+            let end = sub.map_or(start, |s| s.end());
+            let looped = sub.is_some_and(|s| s.is_closed());
             c.looped.push(looped);
             c.ends.push(end);
             if looped {
-                if options.rotate_closed {
-                    loop_vertices(&p.path, &mut c.points);
-                } else {
-                    c.points.push(start);
+                match sub {
+                    Some(sub) if options.rotate_closed => loop_vertices(sub, &mut c.points),
+                    _ => c.points.push(start),
                 }
             } else {
                 // Entered at the start: candidate 0; at the end: candidate 1.
@@ -244,17 +248,14 @@ impl Candidates {
 
 /// Pushes the on-curve vertices of a loop at which it may start: the start
 /// of each segment (the closing line included).
-fn loop_vertices(path: &BezPath, out: &mut Vec<Point>) {
-    let start = start_point(path);
+fn loop_vertices(sub: Subpath, out: &mut Vec<Point>) {
+    let start = sub.start();
     out.push(start);
-    // The elements that draw: all but the move-to and a close-path.
-    let els = path.elements();
-    let drawn = &els[1..els.len() - usize::from(is_closed(path))];
-    let Some((last, inner)) = drawn.split_last() else {
+    let Some((last, inner)) = sub.drawn().split_last() else {
         return; // `M p Z`: a dot.
     };
     // The end of each segment but the last is the start of the next; the
-    // last one ends at the start, unless a close-path adds a line from it.
+    // last one ends at the start, unless a closing line goes on from it.
     out.extend(inner.iter().map(|el| el_end(*el)));
     if el_end(*last) != start {
         out.push(el_end(*last));
@@ -262,25 +263,25 @@ fn loop_vertices(path: &BezPath, out: &mut Vec<Point>) {
 }
 
 /// A loop drawn from its vertex `k` (as numbered by [`loop_vertices`]).
+/// Its closing line becomes a line of its own: the one a close-path draws,
+/// or the one across the gap (at most [`CLOSE_TOLERANCE`]) of a loop that
+/// ends next to its start rather than on it.
+///
+/// [`CLOSE_TOLERANCE`]: crate::geom::subpath::CLOSE_TOLERANCE
 fn rotate_loop(path: &BezPath, k: usize) -> BezPath {
-    if k == 0 {
+    let Some(sub) = subpaths(path).next().filter(|_| k > 0) else {
         return path.clone();
-    }
-    let closed = is_closed(path);
-    let start = start_point(path);
-    let mut segs: Vec<PathEl> = path.elements()[1..]
-        .iter()
-        .copied()
-        .filter(|el| *el != PathEl::ClosePath)
-        .collect();
-    if closed && segs.last().map(|el| el_end(*el)) != Some(start) {
+    };
+    let start = sub.start();
+    let mut segs: Vec<PathEl> = sub.drawn().to_vec();
+    if segs.last().map(|el| el_end(*el)) != Some(start) {
         segs.push(PathEl::LineTo(start));
     }
     let mut out = Vec::with_capacity(segs.len() + 2);
     out.push(PathEl::MoveTo(el_end(segs[k - 1])));
     out.extend_from_slice(&segs[k..]);
     out.extend_from_slice(&segs[..k]);
-    if closed {
+    if sub.ends_with_close() {
         out.push(PathEl::ClosePath);
     }
     BezPath::from_vec(out)
@@ -601,258 +602,6 @@ impl Tour {
     }
 }
 
-/// A static 2-d tree over points with deletion, for nearest-neighbour
-/// queries on a shrinking set (greedy ordering, merging). Points are
-/// identified by their index in the slice given to [`PointIndex::new`].
-///
-/// A complete binary tree in arrays (node 1 is the root, the children of
-/// node `k` are `2k` and `2k + 1`), built by median splits on the wider
-/// side of each box, so every leaf holds at most `LEAF` points and the
-/// range of slots under a node follows from its position. Per node only a
-/// box (in `f32`, rounded outwards) and a count of points not removed are
-/// stored: 20 bytes, so the upper levels stay in cache. Built in
-/// O(n log n); a removal is O(log n); a query skips subtrees whose points
-/// are all removed. Ties are broken towards the lower index, so answers do
-/// not depend on the tree's shape. Points with a coordinate that is not
-/// finite are never found.
-pub(crate) struct PointIndex {
-    /// Points in tree order; a removed point becomes NaN, which no
-    /// distance comparison accepts.
-    xs: Vec<f64>,
-    ys: Vec<f64>,
-    /// The caller's index of each slot.
-    ids: Vec<u32>,
-    /// Caller's index → slot.
-    slot_of: Vec<u32>,
-    /// Node boxes `[min x, min y, max x, max y]`; index 0 is unused.
-    boxes: Vec<[f32; 4]>,
-    /// Points below each node not removed yet.
-    alive: Vec<u32>,
-    /// Depth of the leaves (the root has depth 0).
-    depth: u32,
-    /// Reused by queries: (node, first slot, end slot, squared distance).
-    stack: Vec<(u32, u32, u32, f64)>,
-}
-
-/// Points per leaf, at most.
-const LEAF: usize = 24;
-
-/// The largest `f32` not above `x`.
-fn f32_down(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) <= x || f.is_nan() || f == f32::NEG_INFINITY {
-        f
-    } else if f == 0.0 {
-        -f32::from_bits(1)
-    } else if f > 0.0 {
-        f32::from_bits(f.to_bits() - 1)
-    } else {
-        f32::from_bits(f.to_bits() + 1)
-    }
-}
-
-/// The smallest `f32` not below `x`.
-fn f32_up(x: f64) -> f32 {
-    -f32_down(-x)
-}
-
-/// Squared distance from `(x, y)` to a box (infinite for an empty box).
-#[inline]
-fn box_dist2(b: &[f32; 4], x: f64, y: f64) -> f64 {
-    let dx = (f64::from(b[0]) - x).max(x - f64::from(b[2])).max(0.0);
-    let dy = (f64::from(b[1]) - y).max(y - f64::from(b[3])).max(0.0);
-    dx * dx + dy * dy
-}
-
-/// Where a node's range splits between its children.
-#[inline]
-fn split(lo: u32, hi: u32) -> u32 {
-    lo + (hi - lo) / 2
-}
-
-impl PointIndex {
-    /// An index over `points`, all present.
-    pub(crate) fn new(points: &[Point]) -> PointIndex {
-        let n = points.len();
-        assert!(n < u32::MAX as usize / 2, "too many points for the index");
-        let mut depth = 0u32;
-        while n.div_ceil(1 << depth) > LEAF {
-            depth += 1;
-        }
-        let nodes = 2usize << depth;
-        let first_leaf = 1usize << depth;
-        let mut boxes = vec![
-            [
-                f32::INFINITY,
-                f32::INFINITY,
-                f32::NEG_INFINITY,
-                f32::NEG_INFINITY
-            ];
-            nodes
-        ];
-        let mut alive = vec![0u32; nodes];
-        let mut ranges = vec![(0u32, 0u32); nodes];
-        // Points that are not finite are put in a far corner to keep the
-        // splits' ordering total, and removed below.
-        let finite = |p: &Point| p.x.is_finite() && p.y.is_finite();
-        let far = Point::new(f64::MAX, f64::MAX);
-        let mut entries: Vec<(Point, u32)> = points
-            .iter()
-            .map(|p| if finite(p) { *p } else { far })
-            .zip(0u32..)
-            .collect();
-        ranges[1] = (0, n as u32);
-        // Top-down, level by level: each node's box, then its split.
-        for k in 1..nodes {
-            let (lo, hi) = ranges[k];
-            let slice = &mut entries[lo as usize..hi as usize];
-            alive[k] = hi - lo;
-            let (mut x0, mut y0, mut x1, mut y1) = (
-                f64::INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::NEG_INFINITY,
-            );
-            for (p, _) in slice.iter() {
-                x0 = x0.min(p.x);
-                y0 = y0.min(p.y);
-                x1 = x1.max(p.x);
-                y1 = y1.max(p.y);
-            }
-            boxes[k] = [f32_down(x0), f32_down(y0), f32_up(x1), f32_up(y1)];
-            if k >= first_leaf {
-                continue;
-            }
-            let split_x = x1 - x0 >= y1 - y0;
-            let m = split(lo, hi);
-            // Coordinates are finite here (see `entries`), so `<` orders
-            // them totally.
-            let by = |a: f64, b: f64| {
-                if a < b {
-                    Ordering::Less
-                } else if a > b {
-                    Ordering::Greater
-                } else {
-                    Ordering::Equal
-                }
-            };
-            let nth = (m - lo) as usize;
-            if m > lo && split_x {
-                slice.select_nth_unstable_by(nth, |p, q| by(p.0.x, q.0.x));
-            } else if m > lo {
-                slice.select_nth_unstable_by(nth, |p, q| by(p.0.y, q.0.y));
-            }
-            ranges[2 * k] = (lo, m);
-            ranges[2 * k + 1] = (m, hi);
-        }
-        let mut slot_of = vec![0u32; n];
-        for (slot, (_, id)) in entries.iter().enumerate() {
-            slot_of[*id as usize] = slot as u32;
-        }
-        let mut index = PointIndex {
-            xs: entries.iter().map(|e| e.0.x).collect(),
-            ys: entries.iter().map(|e| e.0.y).collect(),
-            ids: entries.iter().map(|e| e.1).collect(),
-            slot_of,
-            boxes,
-            alive,
-            depth,
-            stack: Vec::new(),
-        };
-        // A point that is not finite is removed from the start.
-        for (id, p) in points.iter().enumerate() {
-            if !finite(p) {
-                index.remove(id as u32);
-            }
-        }
-        index
-    }
-
-    /// Removes point `id`; removing it again does nothing.
-    pub(crate) fn remove(&mut self, id: u32) {
-        let slot = self.slot_of[id as usize];
-        let s = slot as usize;
-        if self.xs[s].is_nan() && self.ys[s].is_nan() {
-            return;
-        }
-        self.xs[s] = f64::NAN;
-        self.ys[s] = f64::NAN;
-        // Walk down from the root to the slot's leaf.
-        let (mut k, mut lo, mut hi) = (1usize, 0u32, self.xs.len() as u32);
-        for _ in 0..self.depth {
-            self.alive[k] -= 1;
-            let m = split(lo, hi);
-            if slot < m {
-                k *= 2;
-                hi = m;
-            } else {
-                k = 2 * k + 1;
-                lo = m;
-            }
-        }
-        self.alive[k] -= 1;
-    }
-
-    /// The present point nearest to `p` within squared distance `max_d2`
-    /// (inclusive), with its squared distance; ties go to the lower index.
-    pub(crate) fn nearest_within(&mut self, p: Point, max_d2: f64) -> Option<(u32, f64)> {
-        let (x, y) = (p.x, p.y);
-        let mut best_d2 = max_d2;
-        let mut best = u32::MAX;
-        if self.alive[1] == 0 {
-            return None;
-        }
-        let first_leaf = 1usize << self.depth;
-        self.stack.clear();
-        self.stack
-            .push((1, 0, self.xs.len() as u32, box_dist2(&self.boxes[1], x, y)));
-        while let Some((k, lo, hi, d2)) = self.stack.pop() {
-            if d2 > best_d2 {
-                continue;
-            }
-            let k = k as usize;
-            if k >= first_leaf {
-                for slot in lo as usize..hi as usize {
-                    let dx = self.xs[slot] - x;
-                    let dy = self.ys[slot] - y;
-                    let d2 = dx * dx + dy * dy;
-                    if d2 <= best_d2 && (d2 < best_d2 || self.ids[slot] < best) {
-                        best_d2 = d2;
-                        best = self.ids[slot];
-                    }
-                }
-                continue;
-            }
-            // A child is worth a visit when it has points left, closer
-            // than the best so far; the nearer one is popped first.
-            let m = split(lo, hi);
-            let (l, r) = (2 * k, 2 * k + 1);
-            let near = |c: usize| {
-                (self.alive[c] > 0)
-                    .then(|| box_dist2(&self.boxes[c], x, y))
-                    .filter(|d| *d <= best_d2)
-            };
-            match (near(l), near(r)) {
-                (Some(dl), Some(dr)) => {
-                    let left = (l as u32, lo, m, dl);
-                    let right = (r as u32, m, hi, dr);
-                    if dl <= dr {
-                        self.stack.push(right);
-                        self.stack.push(left);
-                    } else {
-                        self.stack.push(left);
-                        self.stack.push(right);
-                    }
-                }
-                (Some(d), None) => self.stack.push((l as u32, lo, m, d)),
-                (None, Some(d)) => self.stack.push((r as u32, m, hi, d)),
-                (None, None) => {}
-            }
-        }
-        (best != u32::MAX).then_some((best, best_d2))
-    }
-}
-
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
@@ -950,8 +699,9 @@ pub(crate) mod tests {
                     1 | 2 => {
                         let prev_end = out
                             .last()
-                            .filter(|q| !is_closed(q))
-                            .map(super::super::flatten::end_point);
+                            .and_then(|q| subpaths(q).next())
+                            .filter(|s| !s.ends_with_close())
+                            .map(|s| s.end());
                         let mut els = p.elements().to_vec();
                         if let Some(e) = prev_end {
                             els[0] = PathEl::MoveTo(e);
@@ -1014,7 +764,7 @@ pub(crate) mod tests {
                 let d: f64 = out.iter().map(|p| path_length(&p.path)).sum();
                 prop_assert!((d - down).abs() <= 1e-6 * (1.0 + down));
                 // Every path still starts with its move-to and is one subpath.
-                prop_assert!(out.iter().all(|p| super::super::flatten::subpaths(&p.path).len() == 1));
+                prop_assert!(out.iter().all(|p| subpaths(&p.path).count() == 1));
             }
             prop_assert!(travel(&best) <= travel(&greedy) + 1e-9);
         }
@@ -1056,33 +806,6 @@ pub(crate) mod tests {
             let built = tour.build(input, &cands);
             prop_assert!((travel(&built) - before).abs() < 1e-6);
         }
-
-        #[test]
-        fn index_nearest_matches_brute_force(
-            pts in prop::collection::vec(point(), 1..200),
-            queries in prop::collection::vec(point(), 1..20),
-            removed in prop::collection::vec(any::<prop::sample::Index>(), 0..100),
-        ) {
-            let pts: Vec<Point> = pts.into_iter().map(Point::from).collect();
-            let mut index = PointIndex::new(&pts);
-            let mut alive = vec![true; pts.len()];
-            for r in removed {
-                let i = r.index(pts.len());
-                index.remove(i as u32);
-                alive[i] = false;
-            }
-            for q in queries {
-                let q = Point::from(q);
-                let brute = (0..pts.len())
-                    .filter(|&i| alive[i])
-                    .map(|i| ((pts[i] - q).hypot2(), i as u32))
-                    .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-                let got = index.nearest_within(q, f64::INFINITY).map(|(i, d)| (d, i));
-                prop_assert_eq!(got, brute);
-                let within = index.nearest_within(q, 4.0).map(|(i, d)| (d, i));
-                prop_assert_eq!(within, brute.filter(|b| b.0 <= 4.0));
-            }
-        }
     }
 
     #[test]
@@ -1110,7 +833,7 @@ pub(crate) mod tests {
             out[1].path.elements()[0],
             PathEl::MoveTo(Point::new(10.0, 10.0))
         );
-        assert!(is_closed(&out[1].path));
+        assert!(crate::geom::subpath::is_closed(&out[1].path));
         assert_eq!(seg_multiset([&out[1].path]), seg_multiset([&square]));
         let t = travel(&out);
         assert!((t - (1.0 + 1.0)).abs() < 1e-12, "{t}");
@@ -1135,6 +858,10 @@ pub(crate) mod tests {
         );
     }
 
+    fn first(p: &BezPath) -> Subpath<'_> {
+        subpaths(p).next().unwrap()
+    }
+
     #[test]
     fn rotating_keeps_cubic_loops_exact() {
         let mut p = BezPath::new();
@@ -1142,7 +869,7 @@ pub(crate) mod tests {
         p.curve_to((1.0, 2.0), (3.0, 2.0), (4.0, 0.0));
         p.curve_to((3.0, -2.0), (1.0, -2.0), (0.0, 0.0));
         let mut verts = Vec::new();
-        loop_vertices(&p, &mut verts);
+        loop_vertices(first(&p), &mut verts);
         assert_eq!(verts, [Point::new(0.0, 0.0), Point::new(4.0, 0.0)]);
         let r = rotate_loop(&p, 1);
         assert_eq!(r.elements()[0], PathEl::MoveTo(Point::new(4.0, 0.0)));
@@ -1152,8 +879,47 @@ pub(crate) mod tests {
         dot.move_to((3.0, 3.0));
         dot.close_path();
         verts.clear();
-        loop_vertices(&dot, &mut verts);
+        loop_vertices(first(&dot), &mut verts);
         assert_eq!(verts, [Point::new(3.0, 3.0)]);
+    }
+
+    #[test]
+    fn a_loop_closed_within_the_tolerance_rotates_across_its_gap() {
+        use kurbo::Affine;
+        // Back to 1e-10 mm from its start, without a close-path.
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.line_to((10.0, 0.0));
+        p.line_to((10.0, 10.0));
+        p.line_to((1e-10, 0.0));
+        let mut verts = Vec::new();
+        loop_vertices(subpaths(&p).next().unwrap(), &mut verts);
+        assert_eq!(verts.len(), 4);
+        let r = rotate_loop(&p, 1);
+        assert_eq!(
+            r.elements(),
+            [
+                PathEl::MoveTo(Point::new(10.0, 0.0)),
+                PathEl::LineTo(Point::new(10.0, 10.0)),
+                PathEl::LineTo(Point::new(1e-10, 0.0)),
+                PathEl::LineTo(Point::new(0.0, 0.0)),
+                PathEl::LineTo(Point::new(10.0, 0.0)),
+            ]
+        );
+        // After a line that ends next to its far corner, it is drawn from
+        // there round to there.
+        let out = order(
+            vec![
+                styled("loop", Affine::translate((20.0, 20.0)) * p),
+                styled("line", line((0.0, 0.0), (29.0, 29.0))),
+            ],
+            &SortOptions::DEFAULT,
+        );
+        assert_eq!(out[1].id, "loop");
+        let els = out[1].path.elements();
+        assert_eq!(els[0], PathEl::MoveTo(Point::new(30.0, 30.0)));
+        assert_eq!(els.last(), Some(&PathEl::LineTo(Point::new(30.0, 30.0))));
+        assert_eq!(els.len(), 5);
     }
 
     #[test]

@@ -31,10 +31,11 @@
 
 use std::borrow::Cow;
 
-use kurbo::{Affine, BezPath, PathEl, Point};
+use kurbo::{Affine, BezPath, Point};
 use serde::{Deserialize, Serialize};
 
-use super::flatten::{by_pen, el_end};
+use super::flatten::by_pen;
+use crate::geom::subpath::subpaths;
 use crate::scene::{path_length, Scene};
 
 /// Plotter speeds for the time estimate of [`stats`].
@@ -186,57 +187,22 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
 
 /// Pen-up travel of drawing `paths` in this order, starting from the
 /// origin: straight moves to the start of every subpath that draws, from
-/// where the previous one ended (a closed subpath ends at its start).
+/// where the previous one ended (a subpath that ends with a close-path ends
+/// at its start; see [`crate::geom::subpath`]).
 pub fn pen_up_length<'a>(paths: impl IntoIterator<Item = &'a BezPath>) -> f64 {
     travel(paths).0
 }
 
-/// Pen-up length and number of pen lifts.
+/// Pen-up length and number of pen lifts: one lift to the start of every
+/// subpath (see [`subpaths`]), from where the previous one ended.
 fn travel<'a>(paths: impl IntoIterator<Item = &'a BezPath>) -> (f64, usize) {
-    /// Where the reading of a path stands.
-    #[derive(PartialEq)]
-    enum State {
-        /// After a move-to: nothing drawn yet.
-        Moved,
-        /// Drawing a subpath.
-        Drawing,
-        /// After a close-path (or before anything): drawing again starts a
-        /// new subpath at `start`; closing again draws nothing.
-        Closed,
-    }
     let mut pen = Point::ORIGIN;
     let mut up = 0.0;
     let mut lifts = 0;
-    for path in paths {
-        let mut state = State::Closed;
-        let mut start = pen;
-        for &el in path.elements() {
-            match el {
-                PathEl::MoveTo(p) => {
-                    start = p;
-                    state = State::Moved;
-                }
-                PathEl::ClosePath => {
-                    if state == State::Moved {
-                        // `M p Z` draws a dot.
-                        up += pen.distance(start);
-                        lifts += 1;
-                    }
-                    if state != State::Closed {
-                        pen = start;
-                    }
-                    state = State::Closed;
-                }
-                _ => {
-                    if state != State::Drawing {
-                        up += pen.distance(start);
-                        lifts += 1;
-                        state = State::Drawing;
-                    }
-                    pen = el_end(el);
-                }
-            }
-        }
+    for sub in paths.into_iter().flat_map(subpaths) {
+        up += pen.distance(sub.start());
+        lifts += 1;
+        pen = sub.end();
     }
     (up, lifts)
 }

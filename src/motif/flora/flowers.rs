@@ -41,6 +41,7 @@ use kurbo::{
 use super::{Drawing, MotifParams};
 use crate::geom::clip::StrokeClipper;
 use crate::geom::region::{FillRule, Region};
+use crate::geom::subpath::subpaths;
 use crate::rng::RandomStream;
 
 /// Scale of the boolean work space: motif units × `WORK` (a flower is
@@ -853,11 +854,6 @@ fn hide(mut paths: Vec<BezPath>, clippers: &[&StrokeClipper]) -> Vec<BezPath> {
     paths
 }
 
-/// Whether two rectangles overlap.
-fn overlaps(a: Rect, b: Rect) -> bool {
-    a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1
-}
-
 /// The outer contours of a normalised path (positive area), without its
 /// holes (a gap enclosed by petals is part of the silhouette) and without
 /// lines shorter than [`SPECK`].
@@ -928,21 +924,10 @@ fn refine_crossing(a: &BezPath, b: &BezPath, p: Point) -> Point {
     }
 }
 
-/// The end points of a path's subpaths.
-fn end_points(path: &BezPath) -> Vec<Point> {
-    let mut out = Vec::new();
-    for el in path.elements() {
-        match el {
-            PathEl::MoveTo(p) => out.push(*p),
-            PathEl::ClosePath => {}
-            other => {
-                if let Some(p) = other.end_point() {
-                    out.push(p);
-                }
-            }
-        }
-    }
-    out
+/// The on-curve points of a path: where it moves to and where each of its
+/// segments ends.
+fn vertices(path: &BezPath) -> impl Iterator<Item = Point> + '_ {
+    path.elements().iter().filter_map(PathEl::end_point)
 }
 
 /// The finished drawing of a layout: scaled to fill the box, the
@@ -1008,7 +993,7 @@ fn compose(layout: &Layout) -> Drawing {
         let d = layout.pieces[i].depth;
         let mut hs = vec![&in_front[level_of(d)]];
         for (k, p) in layout.pieces.iter().enumerate() {
-            if k != i && !except.contains(&k) && p.depth == d && overlaps(bounds[i], bounds[k]) {
+            if k != i && !except.contains(&k) && p.depth == d && bounds[i].overlaps(bounds[k]) {
                 hs.push(&piece_clippers[k]);
             }
         }
@@ -1035,7 +1020,7 @@ fn compose(layout: &Layout) -> Drawing {
         let crossings = piece_clippers[k].clip(&shapes[i]).inside;
         let notch = crossings
             .iter()
-            .flat_map(end_points)
+            .flat_map(vertices)
             .max_by(|p, q| p.to_vec2().hypot2().total_cmp(&q.to_vec2().hypot2()));
         let Some(notch) = notch else { continue };
         let notch = refine_crossing(&shapes[i], &shapes[k], notch);
@@ -1050,16 +1035,16 @@ fn compose(layout: &Layout) -> Drawing {
             .collect();
         let Some(first) = inside.into_iter().min_by(|p, q| {
             let dist = |s: &BezPath| {
-                end_points(s)
-                    .first()
-                    .map_or(f64::MAX, |e| e.distance(notch))
+                subpaths(s)
+                    .next()
+                    .map_or(f64::MAX, |s| s.start().distance(notch))
             };
             dist(p).total_cmp(&dist(q))
         }) else {
             continue;
         };
         // From the notch itself (the clip may have cut a hair off it).
-        let Some(&end) = end_points(&first).last() else {
+        let Some(end) = vertices(&first).last() else {
             continue;
         };
         let mut seam = BezPath::new();

@@ -14,8 +14,9 @@ use kurbo::{
     Affine, BezPath, CubicBez, Ellipse, ParamCurve, ParamCurveDeriv, Point, QuadBez, Shape, Vec2,
 };
 
-use super::{subpaths, Drawing, MotifParams};
+use super::{Drawing, MotifParams};
 use crate::geom::region::{FillRule, Region};
+use crate::geom::subpath::subpaths;
 use crate::rng::RandomStream;
 
 /// 紅葉 momiji, a Japanese maple leaf: a palmate blade of pointed,
@@ -409,7 +410,7 @@ fn union(parts: &[BezPath]) -> BezPath {
         }
         return all;
     }
-    let contours = subpaths(merged.path());
+    let contours: Vec<BezPath> = subpaths(merged.path()).map(|s| s.to_path()).collect();
     let outer = contours
         .iter()
         .map(Shape::area)
@@ -469,8 +470,9 @@ fn fit(outline: BezPath, details: BezPath) -> Drawing {
 pub(super) mod tests {
     use kurbo::{Affine, BezPath, ParamCurve, ParamCurveNearest, Point, Shape};
 
-    use super::super::{draw, is_closed, subpaths, Drawing, MotifParams};
+    use super::super::{draw, Drawing, MotifParams};
     use crate::geom::region::{FillRule, Region};
+    use crate::geom::subpath::subpaths;
     use crate::rng::Seed;
     use crate::spec::MotifKind;
 
@@ -529,7 +531,7 @@ pub(super) mod tests {
             assert!(b.inflate(1e-3, 1e-3).contains_rect(db), "{what}: {db:?}");
         }
         for sub in subpaths(&d.outline) {
-            assert!(is_closed(&sub), "{what}: open outline subpath");
+            assert!(sub.is_closed(), "{what}: open outline subpath");
         }
         // One clean silhouette: untangling the outline changes nothing.
         let region = Region::new(d.outline.clone(), FillRule::NonZero).expect(what);
@@ -682,7 +684,7 @@ pub(super) mod tests {
         // Counted as detail strokes: one vein per lobe, one line per needle
         // (plus the collar), one midrib per leaf, a midrib and two
         // veins per pair.
-        let strokes = |kind, n| subpaths(&drawn(kind, Some(n), 0.0, 1).details).len();
+        let strokes = |kind, n| subpaths(&drawn(kind, Some(n), 0.0, 1).details).count();
         assert_eq!(strokes(MotifKind::Momiji, 7), 7);
         assert_eq!(strokes(MotifKind::Momiji, 5), 5);
         assert_eq!(strokes(MotifKind::Matsu, 11), 11 + 1);

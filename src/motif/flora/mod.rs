@@ -28,12 +28,13 @@ mod tiles;
 use std::collections::BTreeMap;
 use std::sync::{Arc, RwLock};
 
-use kurbo::{Affine, BezPath, PathEl, Point, Shape};
+use kurbo::{Affine, BezPath, Point, Shape};
 
 use crate::error::{Error, Result};
 use crate::geom::clip::clip_stroke;
 use crate::geom::offset::offset;
 use crate::geom::region::{FillRule, Region};
+use crate::geom::subpath::subpaths;
 use crate::rng::RandomStream;
 use crate::spec::{MotifKind, MotifRef};
 
@@ -225,10 +226,8 @@ pub fn user_drawing(paths: &[BezPath]) -> std::result::Result<Drawing, String> {
         * Affine::translate(-bounds.center().to_vec2());
     let mut closed = BezPath::new();
     for p in paths {
-        for sub in subpaths(p) {
-            if is_closed(&sub) {
-                closed.extend((to_unit * sub).elements().iter().copied());
-            }
+        for sub in subpaths(p).filter(|s| s.is_closed()) {
+            closed.extend((to_unit * sub.to_path()).elements().iter().copied());
         }
     }
     if closed.elements().is_empty() {
@@ -270,40 +269,14 @@ impl Drawing {
     /// module docs).
     fn normalised(self) -> Drawing {
         let sign = subpaths(&self.outline)
-            .first()
-            .map_or(1.0, |s| s.area().signum());
+            .next()
+            .map_or(1.0, |s| s.to_path().area().signum());
         Drawing {
             outline: wound(&self.outline, sign),
             details: wound(&self.details, sign),
             anchor: self.anchor,
             aspect: self.aspect,
         }
-    }
-}
-
-/// The subpaths of a path.
-fn subpaths(path: &BezPath) -> Vec<BezPath> {
-    let mut out: Vec<BezPath> = Vec::new();
-    for el in path.elements() {
-        if matches!(el, PathEl::MoveTo(_)) || out.is_empty() {
-            out.push(BezPath::new());
-        }
-        if let Some(last) = out.last_mut() {
-            last.push(*el);
-        }
-    }
-    out
-}
-
-/// True when a subpath ends with a close-path or where it started.
-fn is_closed(sub: &BezPath) -> bool {
-    let els = sub.elements();
-    if matches!(els.last(), Some(PathEl::ClosePath)) {
-        return true;
-    }
-    match (els.first(), els.last().and_then(PathEl::end_point)) {
-        (Some(PathEl::MoveTo(a)), Some(b)) => a.distance(b) < 1e-9,
-        _ => false,
     }
 }
 
@@ -314,6 +287,7 @@ fn is_closed(sub: &BezPath) -> bool {
 fn wound(path: &BezPath, sign: f64) -> BezPath {
     let mut out = BezPath::new();
     for sub in subpaths(path) {
+        let sub = sub.to_path();
         let sub = if sub.area() * sign < 0.0 {
             sub.reverse_subpaths()
         } else {

@@ -239,7 +239,8 @@ mod tests {
     use kurbo::{ParamCurve, PathEl, Point, Shape};
 
     use super::super::leaves::tests::{check, drawn};
-    use super::super::{draw, subpaths, MotifParams};
+    use super::super::{draw, MotifParams};
+    use crate::geom::subpath::subpaths;
     use crate::rng::Seed;
     use crate::spec::MotifKind;
 
@@ -255,10 +256,8 @@ mod tests {
         let d = drawn(kind, petals, 0.0, 1);
         let mut out = Vec::new();
         for sub in subpaths(&d.details) {
-            if let Some(PathEl::MoveTo(p)) = sub.elements().first() {
-                out.push(*p);
-            }
-            if let Some(p) = sub.elements().last().and_then(PathEl::end_point) {
+            out.push(sub.start());
+            if let Some(p) = sub.body().last().and_then(PathEl::end_point) {
                 out.push(p);
             }
         }
@@ -387,7 +386,7 @@ mod tests {
     #[test]
     fn shippo_quarter_arcs_close_into_circles_around_the_corners() {
         let d = drawn(MotifKind::Shippo, None, 0.0, 1);
-        assert_eq!(subpaths(&d.details).len(), 4);
+        assert_eq!(subpaths(&d.details).count(), 4);
         for seg in d.details.segments() {
             for i in 0..=10 {
                 let p = seg.eval(f64::from(i) / 10.0);
@@ -409,11 +408,11 @@ mod tests {
     fn kikko_petals_count_the_inner_hexagons() {
         for n in 1..=6 {
             let d = drawn(MotifKind::Kikko, Some(n), 0.0, 1);
-            assert_eq!(subpaths(&d.details).len(), n as usize);
+            assert_eq!(subpaths(&d.details).count(), n as usize);
             assert_eq!(d.outline.elements().len(), 7);
         }
         assert_eq!(
-            subpaths(&drawn(MotifKind::Kikko, None, 0.0, 1).details).len(),
+            subpaths(&drawn(MotifKind::Kikko, None, 0.0, 1).details).count(),
             1
         );
     }
