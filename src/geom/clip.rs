@@ -93,13 +93,35 @@ impl StrokeClipper {
     /// Prepares `region` (boundary flattened within `tolerance` mm;
     /// non-finite or non-positive means [`TOLERANCE`]).
     pub fn new(region: &Region, tolerance: f64) -> StrokeClipper {
+        StrokeClipper::for_union([region], tolerance)
+    }
+
+    /// Prepares the union of `regions` without computing it (no boolean
+    /// sweep): their outlines, flattened within `tolerance` as in
+    /// [`StrokeClipper::new`], are simply put together. Strokes come out
+    /// as [`StrokeClipper::new`] of [`Region::union_all`] would cut them,
+    /// except that they are also cut where they cross an outline inside
+    /// another region (the pieces on either side are joined again), and
+    /// that a stroke along an edge two regions share may go either way.
+    ///
+    /// This rests on two facts, which the tests here check: every
+    /// [`Region`] is normalised (winding number 1 inside, 0 outside, so
+    /// the outlines put together wind as many times round a point as
+    /// there are regions holding it, never less than zero), and
+    /// [`StrokeClipper::contains`] uses the non-zero rule (so a point in
+    /// two regions at once is inside, where the even-odd rule would put
+    /// it outside).
+    pub fn for_union<'a>(
+        regions: impl IntoIterator<Item = &'a Region>,
+        tolerance: f64,
+    ) -> StrokeClipper {
         let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
             tolerance
         } else {
             TOLERANCE
         };
         let mut edges = Vec::new();
-        for poly in region.polygons(tolerance) {
+        for poly in regions.into_iter().flat_map(|r| r.polygons(tolerance)) {
             for i in 0..poly.len() {
                 edges.push(Line::new(poly[i], poly[(i + 1) % poly.len()]));
             }
@@ -578,6 +600,39 @@ mod tests {
         assert_eq!((c.inside.len(), c.outside.len()), (1, 1));
         assert!((total(&c.inside) - 12.0).abs() < 1e-9);
         assert!((total(&c.outside) - 12.0).abs() < 1e-9);
+    }
+
+    /// [`StrokeClipper::for_union`] rests on normalised regions and the
+    /// non-zero rule: with even-odd, or with a region whose contours wind
+    /// the wrong way, the lens where two discs overlap (winding 2) and a
+    /// ring's hole covered by a disc (winding 0 + 1) would come out wrong.
+    #[test]
+    fn a_union_clips_without_a_sweep() {
+        let line = |y: f64| {
+            let mut l = BezPath::new();
+            l.move_to((-30.0, y));
+            l.line_to((40.0, y));
+            l
+        };
+        let discs = [circle(0.0, 0.0, 10.0), circle(12.0, 0.0, 10.0)];
+        let put_together = StrokeClipper::for_union(&discs, 1e-4);
+        assert!(put_together.contains(Point::new(6.0, 0.0)));
+        let c = put_together.clip(&line(0.0));
+        assert_eq!((c.inside.len(), c.outside.len()), (1, 2));
+        assert!((total(&c.inside) - 32.0).abs() < 1e-6);
+        let swept = clip_stroke(&line(0.0), &Region::union_all(&discs), 1e-4);
+        assert!((total(&swept.inside) - total(&c.inside)).abs() < 1e-3);
+
+        let ring = circle(0.0, 0.0, 10.0).difference(&circle(0.0, 0.0, 4.0));
+        let cover = circle(0.0, 0.0, 5.0);
+        let put_together = StrokeClipper::for_union([&ring, &cover], 1e-4);
+        assert!(put_together.contains(Point::ZERO));
+        let c = put_together.clip(&line(0.0));
+        assert_eq!((c.inside.len(), c.outside.len()), (1, 2));
+        assert!((total(&c.inside) - 20.0).abs() < 1e-6);
+        // Nothing: nothing inside.
+        let none = StrokeClipper::for_union([], 1e-4).clip(&line(0.0));
+        assert_eq!((none.inside.len(), none.outside.len()), (0, 1));
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
 //! path by arc length, the "far side of a line" test, tapered outlines, a
-//! nearest-point index, and the reading of a path's subpaths that every
-//! stage shares.
+//! nearest-point index, the reading of a path's subpaths that every stage
+//! shares, and shapes stacked in depth that hide one another.
 //!
 //! Coordinates are page coordinates in millimetres with y pointing *down*
 //! (the SVG convention). "Left" and "right" are as seen by someone walking
@@ -9,6 +9,7 @@
 //! is towards smaller x.
 
 pub mod clip;
+pub mod depth;
 pub mod ffd;
 pub mod offset;
 pub mod polylabel;

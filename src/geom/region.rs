@@ -161,9 +161,22 @@ impl Region {
         Region::default()
     }
 
-    /// Builds a region from a path that is already normalised (simple
-    /// contours, outer ones positive as linesweeper makes them). Used for
-    /// results that come out of a boolean sweep.
+    /// Builds a region from a path that is already normalised, without
+    /// checking it: closed contours that are simple and do not cross one
+    /// another (they may touch at points), outer ones with positive area
+    /// (clockwise on the page), holes with negative area, so that the
+    /// winding number is 1 inside and 0 outside, as a sweep leaves them.
+    /// Every operation relies on that: sweeps sum winding numbers,
+    /// [`StrokeClipper`](super::clip::StrokeClipper) tests containment by
+    /// the non-zero rule (and [`StrokeClipper::for_union`] puts outlines
+    /// together on the strength of it), [`Region::components`] assigns
+    /// holes by area sign. Used for results of a sweep and for shapes
+    /// built simple, such as a single simple closed curve turned to
+    /// positive area; contours of different regions that overlap are not
+    /// normalised (clip by their union with
+    /// [`StrokeClipper::for_union`] instead).
+    ///
+    /// [`StrokeClipper::for_union`]: super::clip::StrokeClipper::for_union
     pub(crate) fn from_normalised(path: BezPath) -> Region {
         Region {
             path,

@@ -28,8 +28,11 @@
 //!   were seen slightly from below, so that the drawing still nearly fills
 //!   its box (see [`boosted`]).
 //!
-//! Boolean work is done at a scale of [`WORK`] so that the region
-//! toolkit's tolerances (given in mm) are far below anything visible here.
+//! Which petal hides which is [`crate::geom::depth`]'s composition (the
+//! one vines will use too); the seams, the cover, the fitting and the
+//! scaling are this file's. Boolean work is done at a scale of [`WORK`] so
+//! that the region toolkit's tolerances (given in mm) are far below
+//! anything visible here.
 
 use std::f64::consts::{PI, TAU};
 
@@ -39,7 +42,7 @@ use kurbo::{
 };
 
 use super::{Drawing, MotifParams};
-use crate::geom::clip::StrokeClipper;
+use crate::geom::depth::{self, DepthStack};
 use crate::geom::region::{FillRule, Region};
 use crate::geom::subpath::subpaths;
 use crate::rng::RandomStream;
@@ -815,7 +818,8 @@ fn fitted(build: impl Fn(f64, &[Jit]) -> Layout, jit: &[Jit]) -> Layout {
 
 /// The region of a petal. Petals are simple closed curves by construction,
 /// so turning one the way normalised regions go (outer contours have a
-/// positive area) normalises it without a sweep.
+/// positive area) normalises it without a sweep (see
+/// `Region::from_normalised` for what that promises).
 fn petal_region(path: &BezPath) -> Region {
     let area = path.area();
     if !area.is_finite() || area.abs() < 1e-9 {
@@ -831,27 +835,6 @@ fn petal_region(path: &BezPath) -> Region {
 /// The region of a closed shape, empty if it encloses nothing.
 fn region_of(path: &BezPath) -> Region {
     Region::new(path.clone(), FillRule::NonZero).unwrap_or_default()
-}
-
-/// A clipper for the union of `regions`, made without a boolean sweep:
-/// their normalised boundaries all wind the same way, so the clipper's
-/// non-zero winding test holds exactly inside one of them, and a stroke cut
-/// where it crosses a boundary inside another region only gets pieces on
-/// the same side, which the clipper joins again.
-fn overlay_clipper<'a>(regions: impl Iterator<Item = &'a Region>) -> StrokeClipper {
-    let mut path = BezPath::new();
-    for r in regions {
-        path.extend(r.path().iter());
-    }
-    StrokeClipper::new(&Region::from_normalised(path), CLIP_TOLERANCE)
-}
-
-/// The parts of `paths` outside every one of `clippers`.
-fn hide(mut paths: Vec<BezPath>, clippers: &[&StrokeClipper]) -> Vec<BezPath> {
-    for c in clippers {
-        paths = paths.iter().flat_map(|p| c.clip(p).outside).collect();
-    }
-    paths
 }
 
 /// The outer contours of a normalised path (positive area), without its
@@ -932,7 +915,8 @@ fn vertices(path: &BezPath) -> impl Iterator<Item = Point> + '_ {
 
 /// The finished drawing of a layout: scaled to fill the box, the
 /// silhouette as the union of everything, the visible edges of petals over
-/// petals further back, their lines, the seams and the top lines.
+/// petals further back, their lines (a [`DepthStack`]), the seams and the
+/// top lines.
 fn compose(layout: &Layout) -> Drawing {
     let (sx, sy) = fit_scales(layout.bounds());
     let fit = Affine::scale_non_uniform(sx, sy);
@@ -940,75 +924,26 @@ fn compose(layout: &Layout) -> Drawing {
     let back = Affine::scale(1.0 / WORK);
 
     let shapes: Vec<BezPath> = layout.pieces.iter().map(|p| to_work * &p.shape).collect();
-    let regions: Vec<Region> = shapes.iter().map(petal_region).collect();
-    let cover = layout
-        .cover
-        .as_ref()
-        .map(|c| region_of(&(to_work * c)))
-        .unwrap_or_default();
-    let mut all: Vec<Region> = regions.clone();
-    all.extend(layout.filler.iter().map(|f| region_of(&(to_work * f))));
-    all.push(cover.clone());
-    let union = Region::union_all(&all);
-    let outline = back * outer_contours(&union.into_path());
-
-    let clipper = |r: &Region| StrokeClipper::new(r, CLIP_TOLERANCE);
-    let piece_clippers: Vec<StrokeClipper> = regions.iter().map(clipper).collect();
-    let bounds: Vec<Rect> = regions.iter().map(Region::bounds).collect();
-    let mut levels: Vec<i32> = layout.pieces.iter().map(|p| p.depth).collect();
-    levels.sort_unstable();
-    levels.dedup();
-    // For each depth: the pieces behind, and those in front with the cover.
-    let behind: Vec<StrokeClipper> = levels
+    let pieces = layout
+        .pieces
         .iter()
-        .map(|&d| {
-            overlay_clipper(
-                layout
-                    .pieces
-                    .iter()
-                    .zip(&regions)
-                    .filter(|(p, _)| p.depth < d)
-                    .map(|(_, r)| r),
-            )
+        .zip(&shapes)
+        .map(|(p, shape)| {
+            depth::Piece::new(petal_region(shape), p.depth)
+                .with_edge(shape.clone())
+                .with_lines(to_work * &p.lines)
         })
         .collect();
-    let in_front: Vec<StrokeClipper> = levels
+    let cover = layout.cover.as_ref().map(|c| region_of(&(to_work * c)));
+    let stack = DepthStack::new(pieces, cover, CLIP_TOLERANCE);
+    let filler: Vec<Region> = layout
+        .filler
         .iter()
-        .map(|&d| {
-            overlay_clipper(
-                layout
-                    .pieces
-                    .iter()
-                    .zip(&regions)
-                    .filter(|(p, _)| p.depth > d)
-                    .map(|(_, r)| r)
-                    .chain(std::iter::once(&cover)),
-            )
-        })
+        .map(|f| region_of(&(to_work * f)))
         .collect();
-    let level_of = |d: i32| levels.binary_search(&d).unwrap_or(0);
-    // What hides the lines of piece `i`, apart from `except`: the pieces
-    // in front, the cover, and the other pieces at its depth.
-    let hiders = |i: usize, except: &[usize]| -> Vec<&StrokeClipper> {
-        let d = layout.pieces[i].depth;
-        let mut hs = vec![&in_front[level_of(d)]];
-        for (k, p) in layout.pieces.iter().enumerate() {
-            if k != i && !except.contains(&k) && p.depth == d && bounds[i].overlaps(bounds[k]) {
-                hs.push(&piece_clippers[k]);
-            }
-        }
-        hs
-    };
+    let outline = back * outer_contours(&stack.silhouette(&filler).into_path());
 
-    let mut lines: Vec<BezPath> = Vec::new();
-    for (i, piece) in layout.pieces.iter().enumerate() {
-        let edge = behind[level_of(piece.depth)].clip(&shapes[i]).inside;
-        let hs = hiders(i, &[]);
-        lines.extend(hide(edge, &hs));
-        if !piece.lines.elements().is_empty() {
-            lines.extend(hide(vec![to_work * &piece.lines], &hs));
-        }
-    }
+    let mut lines = stack.visible_lines();
     for &(i, k) in &layout.seams {
         let (Some(a), Some(b)) = (layout.pieces.get(i), layout.pieces.get(k)) else {
             continue;
@@ -1017,7 +952,7 @@ fn compose(layout: &Layout) -> Drawing {
             continue;
         }
         // The notch: where the edges cross farthest from the centre.
-        let crossings = piece_clippers[k].clip(&shapes[i]).inside;
+        let crossings = stack.clipper(k).clip(&shapes[i]).inside;
         let notch = crossings
             .iter()
             .flat_map(vertices)
@@ -1027,11 +962,12 @@ fn compose(layout: &Layout) -> Drawing {
         let mut seam = BezPath::new();
         seam.move_to(notch);
         seam.line_to(Point::ZERO);
-        let inside: Vec<BezPath> = piece_clippers[i]
+        let inside: Vec<BezPath> = stack
+            .clipper(i)
             .clip(&seam)
             .inside
             .iter()
-            .flat_map(|s| piece_clippers[k].clip(s).inside)
+            .flat_map(|s| stack.clipper(k).clip(s).inside)
             .collect();
         let Some(first) = inside.into_iter().min_by(|p, q| {
             let dist = |s: &BezPath| {
@@ -1050,7 +986,8 @@ fn compose(layout: &Layout) -> Drawing {
         let mut seam = BezPath::new();
         seam.move_to(notch);
         seam.line_to(end);
-        lines.extend(hide(vec![seam], &hiders(i, &[k])));
+        // The neighbour does not hide the seam along its edge.
+        lines.extend(stack.hide_on(i, &[k], vec![seam]));
     }
 
     let mut details = BezPath::new();
@@ -1076,6 +1013,7 @@ mod tests {
 
     use super::super::draw;
     use super::*;
+    use crate::geom::clip::StrokeClipper;
     use crate::rng::Seed;
     use crate::spec::MotifKind;
 
