@@ -217,8 +217,11 @@ pub fn svg_options(spec: &SceneSpec) -> SvgOptions {
 pub struct Rendered {
     /// The scene.
     pub scene: Scene,
-    /// The SVG text.
+    /// The SVG to plot: only what pens draw (see [`crate::output::to_svg`]);
+    /// the colour preview is [`Rendered::preview_svg`].
     pub svg: String,
+    /// The options `svg` was written with.
+    options: SvgOptions,
 }
 
 /// Builds the scene, runs the plot stages the description asks for and
@@ -237,14 +240,26 @@ pub fn render_with_progress(
         build_scene_with_progress(spec, library, progress)?,
         &spec.plot,
     )?;
-    let svg = to_svg(&scene, &svg_options(spec));
-    Ok(Rendered { scene, svg })
+    let options = svg_options(spec);
+    let svg = to_svg(&scene, &options);
+    Ok(Rendered {
+        scene,
+        svg,
+        options,
+    })
 }
 
 impl Rendered {
-    /// PNG preview of exactly this SVG.
+    /// The colour preview SVG: the plot's pen layers as they are in
+    /// [`Rendered::svg`], plus the preview colour of partly hidden shapes
+    /// and the layers that are not plotted.
+    pub fn preview_svg(&self) -> String {
+        to_svg(&self.scene, &self.options.with_preview(true))
+    }
+
+    /// PNG preview, rendered from [`Rendered::preview_svg`].
     pub fn png(&self, dpi: f64) -> Result<Vec<u8>> {
-        render_png(&self.svg, dpi)
+        render_png(&self.preview_svg(), dpi)
     }
 
     /// The line-oriented path dump (see [`crate::output::path_dump`]).

@@ -106,9 +106,14 @@ pub(crate) struct PlotArgs {
     /// Decimals in SVG output (0–8).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
     precision: u8,
-    /// Also write a PNG preview of the result.
+    /// Also write a PNG preview of the result, in colour (rendered from
+    /// the SVG of --preview-svg).
     #[arg(long, help_heading = "Output")]
     png: Option<PathBuf>,
+    /// Also write the colour preview as SVG: the result plus fill colours
+    /// and `%` layers, for looking at, not for plotting.
+    #[arg(long, value_name = "SVG", help_heading = "Output")]
+    preview_svg: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
     #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
     dpi: f64,
@@ -349,6 +354,14 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
             to_hpgl(&scene, &o)
         }
     };
+    let preview_svg = args.preview_svg.as_ref().map(|_| {
+        to_svg(
+            &scene,
+            &SvgOptions::DEFAULT
+                .with_precision(args.precision)
+                .with_preview(true),
+        )
+    });
     let png = match &args.png {
         Some(_) => {
             let preview = if args.show_travel {
@@ -357,13 +370,16 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
                 scene.clone()
             };
             Some(render_png(
-                &to_svg(&preview, &SvgOptions::DEFAULT),
+                &to_svg(&preview, &SvgOptions::DEFAULT.with_preview(true)),
                 args.dpi,
             )?)
         }
         None => None,
     };
     write_atomic(&args.output, bytes.as_bytes())?;
+    if let (Some(path), Some(svg)) = (&args.preview_svg, &preview_svg) {
+        write_atomic(path, svg.as_bytes())?;
+    }
     if let (Some(path), Some(png)) = (&args.png, &png) {
         write_atomic(path, png)?;
     }

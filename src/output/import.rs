@@ -1734,7 +1734,7 @@ mod tests {
                 content: guides,
             },
         );
-        let svg = to_svg(&original, &SvgOptions::DEFAULT);
+        let svg = to_svg(&original, &SvgOptions::DEFAULT.with_preview(true));
         assert!(
             svg.contains("inkscape:label=\"%guides &amp; notes\""),
             "{svg}"
@@ -1772,7 +1772,7 @@ mod tests {
                 .path_count()
         );
         // And once more: the label survives a second round.
-        let again = to_svg(scene, &SvgOptions::DEFAULT);
+        let again = to_svg(scene, &SvgOptions::DEFAULT.with_preview(true));
         assert!(again.contains("inkscape:label=\"%guides &amp; notes\""));
         assert!(!import(&again).scene.layers[0].is_plotted());
     }

@@ -3,8 +3,10 @@
 //!
 //! - [`to_svg`]: layered SVG, one Inkscape layer per pen, page size in mm,
 //!   with the scene description embedded ([`embedded_description`] reads it
-//!   back);
-//! - [`render_png`]: a PNG preview rendered from that SVG text;
+//!   back): the plot, only what pens draw, or the colour preview, which
+//!   adds preview fills and `%` layers ([`SvgOptions::preview`]);
+//! - [`render_png`]: a PNG rendered from SVG text (the colour preview's,
+//!   for a preview);
 //! - [`path_dump`]: a stable one-line-per-path text for snapshot tests;
 //! - [`write_atomic`]: puts any of these on disk without half-written files;
 //! - [`write_number`]: the single number formatter behind all text outputs.
