@@ -207,8 +207,11 @@ pub fn svg_options(spec: &ValidSpec) -> SvgOptions {
 pub struct Rendered {
     /// The scene.
     pub scene: Scene,
-    /// The SVG text.
+    /// The SVG to plot: only what pens draw (see [`crate::output::to_svg`]);
+    /// the colour preview is [`Rendered::preview_svg`].
     pub svg: String,
+    /// The options `svg` was written with.
+    options: SvgOptions,
 }
 
 /// Builds the scene, runs the plot stages the description asks for and
@@ -227,14 +230,26 @@ pub fn render_with_progress(
         build_scene_with_progress(spec, library, progress)?,
         &spec.plot,
     )?;
-    let svg = to_svg(&scene, &svg_options(spec));
-    Ok(Rendered { scene, svg })
+    let options = svg_options(spec);
+    let svg = to_svg(&scene, &options);
+    Ok(Rendered {
+        scene,
+        svg,
+        options,
+    })
 }
 
 impl Rendered {
-    /// PNG preview of exactly this SVG.
+    /// The colour preview SVG: the plot's pen layers as they are in
+    /// [`Rendered::svg`], plus the preview colour of partly hidden shapes
+    /// and the layers that are not plotted.
+    pub fn preview_svg(&self) -> String {
+        to_svg(&self.scene, &self.options.with_preview(true))
+    }
+
+    /// PNG preview, rendered from [`Rendered::preview_svg`].
     pub fn png(&self, dpi: f64) -> Result<Vec<u8>> {
-        render_png(&self.svg, dpi)
+        render_png(&self.preview_svg(), dpi)
     }
 
     /// The line-oriented path dump (see [`crate::output::path_dump`]).
@@ -389,6 +404,15 @@ pub struct Plotted {
     pub png: Option<Vec<u8>>,
 }
 
+impl Plotted {
+    /// The colour preview SVG of the result, numbers written with
+    /// `precision` decimals: the plotted pens plus preview fills and `%`
+    /// layers, for looking at, not for plotting.
+    pub fn preview_svg(&self, precision: u8) -> String {
+        to_svg(&self.scene, &SvgOptions::PREVIEW.with_precision(precision))
+    }
+}
+
 /// Runs a drawing (typically from [`read_svg`]) through the job: marks
 /// silhouettes when asked, runs the plot stages, writes the output and
 /// renders the preview.
@@ -416,9 +440,9 @@ pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
     let png = match job.preview {
         Some(p) => {
             let svg = if p.show_travel {
-                to_svg(&with_travel(&scene), &SvgOptions::DEFAULT)
+                to_svg(&with_travel(&scene), &SvgOptions::PREVIEW)
             } else {
-                to_svg(&scene, &SvgOptions::DEFAULT)
+                to_svg(&scene, &SvgOptions::PREVIEW)
             };
             Some(render_png(&svg, p.dpi)?)
         }

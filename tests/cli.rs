@@ -159,7 +159,14 @@ fn render_without_scene_writes_the_default_design() {
     let dump = read_text(&dump_path);
     let paths = path_count(&svg);
     assert!(paths > 20, "only {paths} paths in the default design");
-    assert_eq!(dump.lines().count(), paths);
+    // The dump has every path of the scene; the SVG only what pens draw,
+    // not the preview colour of partly hidden shapes.
+    let fills = dump
+        .lines()
+        .filter(|l| l.starts_with("preview-fills\t"))
+        .count();
+    assert!(fills > 0 && !svg.contains("preview-fills"));
+    assert_eq!(dump.lines().count(), paths + fills);
     assert!(dump.ends_with('\n'));
     for line in dump.lines() {
         assert_eq!(line.split('\t').count(), 3, "{line}");
@@ -177,6 +184,33 @@ fn render_default_output_name_is_moyo_svg() {
     let dir = tempdir();
     moyo(&dir).arg("render").assert().success();
     assert!(read_text(&dir.path().join("moyo.svg")).starts_with("<?xml"));
+}
+
+#[test]
+fn preview_svg_is_a_separate_output_in_colour() {
+    let dir = tempdir();
+    moyo(&dir)
+        .args(["render", "-o", "plot.svg", "--preview-svg", "preview.svg"])
+        .assert()
+        .success()
+        .stderr(
+            predicate::str::contains("wrote plot.svg (")
+                .and(predicate::str::contains(") and preview.svg")),
+        );
+    let plot = read_text(&dir.path().join("plot.svg"));
+    let preview = read_text(&dir.path().join("preview.svg"));
+    // The preview adds the colour of cut shapes, in a `%` layer before the
+    // pens; from the first pen on, it is the plot.
+    assert!(!plot.contains("%preview fills"));
+    assert!(preview.contains("inkscape:label=\"%preview fills\""));
+    let pens = |s: &str| s[s.find("<g id=\"pen-").unwrap()..].to_string();
+    assert!(pens(&plot) == pens(&preview));
+    // It carries the description too: reopening it gives the plot again.
+    moyo(&dir)
+        .args(["render", "--from", "preview.svg", "-o", "again.svg"])
+        .assert()
+        .success();
+    assert!(read_text(&dir.path().join("again.svg")) == plot);
 }
 
 #[test]

@@ -1726,8 +1726,11 @@ fn partly_hidden_fills_keep_the_colour_of_their_visible_area() {
         fills >= 2,
         "the crowded flowers hide each other ({fills} fills)"
     );
-    assert!(rendered.svg.contains(";stroke:none\""));
-    assert!(rendered.svg.contains("inkscape:label=\"%preview fills\""));
+    // They are the colour preview's, not the plot's.
+    let preview = rendered.preview_svg();
+    assert!(preview.contains(";stroke:none\""));
+    assert!(preview.contains("inkscape:label=\"%preview fills\""));
+    assert!(!rendered.svg.contains("stroke:none") && !rendered.svg.contains("%preview"));
     // Without the option, the colour of cut shapes is simply gone.
     let plain = spec
         .edit(|s| {
@@ -1736,7 +1739,7 @@ fn partly_hidden_fills_keep_the_colour_of_their_visible_area() {
             }
         })
         .unwrap();
-    assert!(!render(&plain).svg.contains("stroke:none"));
+    assert!(!render(&plain).preview_svg().contains("stroke:none"));
     // Pens have nothing to draw there: per-pen outputs and stats skip them.
     assert_eq!(rendered.scene.stats().paths, drawn);
     let flat = moyo::plot::flatten::by_pen(&rendered.scene);

@@ -1,6 +1,7 @@
 //! `moyo plot` and `moyo stats` through the binary: formats, stages, stats
 //! JSON, and bad input leaving no output file; AxiDraw documentation layers
-//! (`%` names) kept in SVG and left out of everything plotted; and real
+//! (`%` names) kept in the colour preview and left out of everything
+//! plotted, the SVG included; and real
 //! interpreters (pygcode, hp2xx) reading our G-code and HPGL, when
 //! `MOYO_PYTHON` and `MOYO_HP2XX` name them (`.ci/run` sets both).
 
@@ -61,11 +62,11 @@ fn stats_json_has_totals_and_layers() {
     assert!(number(&s, "pen_down_mm") > 1000.0);
     assert!(number(&s, "pen_up_mm") > 0.0);
     assert!(number(&s, "plot_time_s") > 0.0);
-    // The default design keeps preview fills in a `%` layer: listed, not
-    // plotted, not in the totals.
+    // The default design keeps preview fills in a `%` layer, which only
+    // the colour preview holds: the SVG has the plotted layers alone.
     let all = s["layers"].as_array().expect("layers");
     let layers: Vec<_> = all.iter().filter(|l| l["plotted"] == true).collect();
-    assert_eq!(all.len(), layers.len() + 1, "one `%preview fills` layer");
+    assert_eq!(all.len(), layers.len(), "no `%preview fills` layer");
     let svg = fs::read_to_string(dir.path().join("hem.svg")).unwrap();
     assert!(layers.len() >= 2);
     assert_eq!(layers.len(), pen_numbers(&svg).len(), "one per pen");
@@ -212,7 +213,8 @@ fn hpgl_beyond_the_device_range_fails_and_writes_nothing() {
 }
 
 // ---------------------------------------------------------------------------
-// AxiDraw documentation layers (`%` names): kept in SVG, never plotted.
+// AxiDraw documentation layers (`%` names): kept in the colour preview,
+// never plotted.
 
 /// Two documentation layers, `%guides` and `  % 2 notes`, beside pens 1 and
 /// 2 (see the comment at the top of the file).
@@ -290,43 +292,49 @@ fn in_plotted_box(x: f64, y: f64, slack: f64) -> bool {
 }
 
 #[test]
-fn documentation_layers_survive_merge_and_sort_unchanged() {
+fn documentation_layers_survive_merge_and_sort_unchanged_in_the_preview() {
     let dir = with_axidraw_layers();
     moyo(&dir)
         .args(["plot", "in.svg", "--merge", "--sort", "-o", "out.svg"])
-        .args(["--png", "out.png"])
+        .args(["--png", "out.png", "--preview-svg", "preview.svg"])
         .assert()
         .success()
         // The summary counts what is plotted: 3 paths after merging.
         .stderr(predicate::str::contains("(3 paths, 226 mm pen-down"));
+    // The plot holds only what pens draw: vpype and cutters would draw
+    // the guides.
     let out = fs::read_to_string(dir.path().join("out.svg")).unwrap();
+    assert!(!out.contains("inkscape:label=\"%"), "{out}");
+    assert!(unplotted_layers(&out).is_empty());
+    let preview = fs::read_to_string(dir.path().join("preview.svg")).unwrap();
     for label in ["%guides", "% 2 notes"] {
         assert!(
-            out.contains(&format!("inkscape:label=\"{label}\"")),
-            "{label} is a layer of its own:\n{out}"
+            preview.contains(&format!("inkscape:label=\"{label}\"")),
+            "{label} is a layer of its own:\n{preview}"
         );
     }
-    assert_same_unplotted_layers(AXIDRAW_LAYERS, &out);
+    assert_same_unplotted_layers(AXIDRAW_LAYERS, &preview);
     assert!(dir.path().join("out.png").exists());
 
     // Stats: the documentation layers are listed, flagged, and not counted.
-    for (file, plotted_paths) in [("in.svg", 4.0), ("out.svg", 3.0)] {
+    for (file, plotted_paths, documented) in [
+        ("in.svg", 4.0, true),
+        ("preview.svg", 3.0, true),
+        ("out.svg", 3.0, false),
+    ] {
         let s = stats_json(&dir, file);
         let layers = s["layers"].as_array().expect("layers");
         let flags: Vec<(&str, bool)> = layers
             .iter()
             .map(|l| (l["name"].as_str().unwrap(), l["plotted"].as_bool().unwrap()))
             .collect();
-        assert_eq!(
-            flags,
-            [
-                ("%guides", false),
-                ("% 2 notes", false),
-                ("black", true),
-                ("red", true)
-            ],
-            "{file}"
-        );
+        let pens = [("black", true), ("red", true)];
+        let expected = if documented {
+            [&[("%guides", false), ("% 2 notes", false)][..], &pens].concat()
+        } else {
+            pens.to_vec()
+        };
+        assert_eq!(flags, expected, "{file}");
         assert_eq!(number(&s, "paths"), plotted_paths, "{file}");
         // usvg's circle (four cubics) is a little longer than 2πr.
         let ink = number(&s, "pen_down_mm");
@@ -345,9 +353,11 @@ fn documentation_layers_survive_merge_and_sort_unchanged() {
                 .sum();
             assert!((plotted - number(&s, key)).abs() < 1e-9, "{file}: {key}");
         }
-        // The guides' own figures: a 560 mm frame and a 90 mm line.
-        assert_eq!(number(&layers[0], "paths"), 2.0);
-        assert!((number(&layers[0], "pen_down_mm") - 650.0).abs() < 0.01);
+        if documented {
+            // The guides' own figures: a 560 mm frame and a 90 mm line.
+            assert_eq!(number(&layers[0], "paths"), 2.0);
+            assert!((number(&layers[0], "pen_down_mm") - 650.0).abs() < 0.01);
+        }
     }
 }
 
@@ -418,11 +428,13 @@ fn documentation_layers_are_neither_hatched_nor_occluded() {
             "--occlude",
             "-o",
             "out.svg",
+            "--preview-svg",
+            "preview.svg",
         ])
         .assert()
         .success();
-    let out = fs::read_to_string(dir.path().join("out.svg")).unwrap();
-    assert_same_unplotted_layers(AXIDRAW_LAYERS, &out);
+    let preview = fs::read_to_string(dir.path().join("preview.svg")).unwrap();
+    assert_same_unplotted_layers(AXIDRAW_LAYERS, &preview);
     let s = stats_json(&dir, "out.svg");
     assert!((number(&s, "pen_down_mm") - plotted_ink()).abs() < 0.05);
 }

@@ -1,15 +1,29 @@
 //! Snapshot tests of the geometry, through the library and the path dump
-//! (`Rendered::dump`): one per tree rule, one outline-style tree, one per
-//! built-in motif, one per built-in template. Snapshots live in `tests/snapshots/`; see
-//! tests/README.md for how to review a change.
+//! (`Rendered::dump`): one per tree rule, one outline-style tree and one
+//! of every built-in motif as per-path dumps, and one readable summary per
+//! built-in template (its pictures are compared in `golden.rs`). Snapshots
+//! live in `tests/snapshots/`; tests/README.md says how to read them and
+//! how to review a change.
 
+use kurbo::{PathEl, Rect, Shape};
 use moyo::project::{self, Rendered};
 use moyo::spec::{Format, SceneSpec};
-use moyo::templates;
+use moyo::{templates, Layer, Node, Scene, StyledPath};
 
-/// Decimals of the rule snapshots: 0.01 mm, enough to see any real change,
-/// coarse enough to keep the files small.
+/// Decimals of the per-path snapshots: 0.01 mm, enough to see any real
+/// change, coarse enough that float noise (last-bit differences between
+/// machines) almost never moves a number across a rounding boundary.
 const PRECISION: u8 = 2;
+
+/// Decimals of the template summaries' dump hashes: 0.1 mm, as coarse as
+/// their other figures.
+const SUMMARY_PRECISION: u8 = 1;
+
+/// Longest line allowed in a snapshot file, so that a diff stays readable.
+const MAX_LINE: usize = 2000;
+
+/// Path commands per line of a wrapped dump (see [`wrap`]).
+const COMMANDS_PER_LINE: usize = 6;
 
 /// One tree of `rule`, upright in the middle of an A4 page: no jitter, no
 /// region lines, every parameter given so that changed defaults do not
@@ -84,6 +98,57 @@ fn check_dump(dump: &str, style: &str) {
     }
 }
 
+/// A path dump laid out for review: the path's first line is the dump's
+/// `layer<TAB>id<TAB>` and its first commands; a new line starts at every
+/// further subpath (`M`) and after every [`COMMANDS_PER_LINE`] commands,
+/// beginning with two tabs, so it lines up under the path data. Breaking
+/// after a fixed number of commands rather than at a width keeps a changed
+/// number from reflowing the lines after it. Joining each path's lines
+/// with single spaces (dropping the two tabs) gives the dump back.
+fn wrap(dump: &str) -> String {
+    let mut out = String::new();
+    for line in dump.lines() {
+        let (head, data) = line.rsplit_once('\t').expect("three fields");
+        out.push_str(head);
+        out.push('\t');
+        // Commands start with a letter; numbers never do.
+        let mut in_line = 0;
+        for (i, token) in data.split(' ').enumerate() {
+            let command = token.starts_with(|c: char| c.is_ascii_alphabetic());
+            if command && i > 0 && (token == "M" || in_line == COMMANDS_PER_LINE) {
+                out.push_str("\n\t\t");
+                in_line = 0;
+            } else if i > 0 {
+                out.push(' ');
+            }
+            out.push_str(token);
+            in_line += usize::from(command);
+        }
+        out.push('\n');
+    }
+    let longest = out.lines().map(str::len).max().unwrap_or(0);
+    assert!(
+        longest <= MAX_LINE,
+        "a snapshot line of {longest} characters"
+    );
+    out
+}
+
+#[test]
+fn wrapping_keeps_the_dump() {
+    let dump = "l\ta\tM 0 0 L 1 1 L 2 2 L 3 3 L 4 4 L 5 5 L 6 6 L 7 7 Z M 9 9 L 8 8\nl\tb\t\n";
+    let wrapped = wrap(dump);
+    assert_eq!(
+        wrapped,
+        "l\ta\tM 0 0 L 1 1 L 2 2 L 3 3 L 4 4 L 5 5\n\
+         \t\tL 6 6 L 7 7 Z\n\
+         \t\tM 9 9 L 8 8\n\
+         l\tb\t\n"
+    );
+    let unwrapped = wrapped.replace("\n\t\t", " ");
+    assert_eq!(unwrapped, dump);
+}
+
 #[test]
 fn every_tree_rule() {
     for n in 1..=8 {
@@ -98,7 +163,7 @@ fn every_tree_rule() {
         );
         // A trunk and at least one branch.
         assert!(dump.lines().count() >= 2, "{rule}: {dump}");
-        insta::assert_snapshot!(format!("tree{n}"), dump);
+        insta::assert_snapshot!(format!("tree{n}"), wrap(&dump));
     }
 }
 
@@ -110,19 +175,7 @@ fn tree1_outline() {
     // Same skeleton, other drawing: as many limbs as the stroke version.
     let strokes = render(&one_tree_scene("tree1", "stroke")).dump(PRECISION);
     assert_eq!(dump.lines().count(), strokes.lines().count());
-    insta::assert_snapshot!("tree1-outline", dump);
-}
-
-#[test]
-fn every_template() {
-    for t in templates::ALL {
-        let spec = t.spec().unwrap_or_else(|e| panic!("{}: {e}", t.name));
-        let rendered = project::render(&spec).unwrap_or_else(|e| panic!("{}: {e}", t.name));
-        let dump = rendered.dump(spec.output.precision);
-        assert!(!dump.is_empty(), "{} draws nothing", t.name);
-        assert_eq!(dump.lines().count(), rendered.scene.path_count());
-        insta::assert_snapshot!(format!("template-{}", t.name), dump);
-    }
+    insta::assert_snapshot!("tree1-outline", wrap(&dump));
 }
 
 /// Every built-in motif at its defaults, 20 mm wide, one path each.
@@ -131,7 +184,7 @@ fn every_motif() {
     use kurbo::Affine;
     use moyo::motif::flora::{draw, MotifParams};
     use moyo::spec::MotifKind;
-    use moyo::{Group, Layer, Margins, Page, PaperName, Scene, Seed, Style};
+    use moyo::{Group, Margins, Page, PaperName, Seed, Style};
 
     let mut group = Group::new("motifs");
     for (i, kind) in MotifKind::ALL.into_iter().enumerate() {
@@ -158,5 +211,157 @@ fn every_motif() {
     };
     let dump = moyo::output::path_dump(&scene, PRECISION);
     assert_eq!(dump.lines().count(), MotifKind::ALL.len());
-    insta::assert_snapshot!("motifs", dump);
+    insta::assert_snapshot!("motifs", wrap(&dump));
+}
+
+/// Every built-in template as a summary a person can read (see
+/// [`summary`]); what it looks like is checked by `golden.rs`.
+#[test]
+fn every_template() {
+    for t in templates::ALL {
+        let spec = t.spec().unwrap_or_else(|e| panic!("{}: {e}", t.name));
+        let rendered = project::render(&spec).unwrap_or_else(|e| panic!("{}: {e}", t.name));
+        assert!(rendered.scene.path_count() > 0, "{} draws nothing", t.name);
+        insta::assert_snapshot!(format!("template-{}", t.name), summary(&rendered.scene));
+    }
+}
+
+/// A template's figures, one table row per layer and per set (a group
+/// directly in a layer: a tree set, a background), rounded to 0.1 mm so
+/// that float noise does not change them:
+///
+/// - `paths`, `subpaths` (pen lifts), `length mm` (outline length of every
+///   path, fill-only ones included);
+/// - `bounds mm`: left, top, right, bottom on the page;
+/// - `hash`: FNV-1a 64 of the part's path dump at 0.1 mm. It changes with
+///   any change of geometry or ids that shows at that precision; whether
+///   the change is visible is the PNG comparison's call.
+///
+/// The first line gives the totals of the plotted layers (the paths a pen
+/// draws and their pen-down length) and the hash of the whole dump.
+fn summary(scene: &Scene) -> String {
+    let dump = moyo::output::path_dump(scene, SUMMARY_PRECISION);
+    let mut lines = dump.lines();
+    let page = scene.page_transform();
+    let mut rows: Vec<(String, Part)> = Vec::new();
+    let mut all = Part::default();
+    let mut drawn = Part::default();
+    for layer in &scene.layers {
+        let mut whole = Part::default();
+        let mut sets: Vec<(String, Part)> = Vec::new();
+        let outer = page * layer.content.transform;
+        let mut add = |part: Option<&mut Part>, p: &StyledPath, t: kurbo::Affine| {
+            let line = lines.next().expect("one dump line per path");
+            let path = t * p.path.clone();
+            for part in [Some(&mut whole), Some(&mut all), part]
+                .into_iter()
+                .flatten()
+            {
+                part.add(&path, line);
+            }
+            if layer.is_plotted() && !p.style.fill_only {
+                drawn.add(&path, line);
+            }
+        };
+        for child in &layer.content.children {
+            match child {
+                Node::Group(g) => {
+                    let mut set = Part::default();
+                    g.visit_paths(outer, &mut |p, t| add(Some(&mut set), p, t));
+                    sets.push((format!("  {}", g.id), set));
+                }
+                Node::Path(p) => add(None, p, outer),
+            }
+        }
+        let plotted = if layer.is_plotted() {
+            ""
+        } else {
+            " (not plotted)"
+        };
+        rows.push((format!("{} pen {}{plotted}", layer.id, layer.pen), whole));
+        rows.extend(sets);
+    }
+    let mut out = format!(
+        "{} plotted paths, {} mm pen-down; every path within {} mm; dump hash {:016x}\n\n",
+        drawn.paths,
+        mm(drawn.length),
+        all.bounds_text(),
+        all.hash,
+    );
+    let width = rows
+        .iter()
+        .map(|(n, _)| n.chars().count())
+        .max()
+        .unwrap_or(0);
+    out.push_str(&format!(
+        "{:width$}  {:>6}  {:>8}  {:>10}  {:>27}  hash\n",
+        "layer / set", "paths", "subpaths", "length mm", "bounds mm"
+    ));
+    for (name, part) in rows {
+        out.push_str(&format!(
+            "{name:width$}  {:>6}  {:>8}  {:>10}  {:>27}  {:016x}\n",
+            part.paths,
+            part.subpaths,
+            mm(part.length),
+            part.bounds_text(),
+            part.hash
+        ));
+    }
+    out
+}
+
+/// Running figures of a part of a scene (see [`summary`]).
+struct Part {
+    paths: usize,
+    subpaths: usize,
+    length: f64,
+    bounds: Option<Rect>,
+    hash: u64,
+}
+
+impl Default for Part {
+    fn default() -> Part {
+        Part {
+            paths: 0,
+            subpaths: 0,
+            length: 0.0,
+            bounds: None,
+            hash: FNV_OFFSET,
+        }
+    }
+}
+
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+impl Part {
+    /// Adds a path (in page coordinates) and its dump line.
+    fn add(&mut self, path: &kurbo::BezPath, line: &str) {
+        self.paths += 1;
+        self.subpaths += path
+            .elements()
+            .iter()
+            .filter(|e| matches!(e, PathEl::MoveTo(_)))
+            .count();
+        self.length += moyo::scene::path_length(path);
+        if !path.elements().is_empty() {
+            let b = path.bounding_box();
+            self.bounds = Some(self.bounds.map_or(b, |a| a.union(b)));
+        }
+        for byte in line.bytes().chain([b'\n']) {
+            self.hash = (self.hash ^ u64::from(byte)).wrapping_mul(FNV_PRIME);
+        }
+    }
+
+    fn bounds_text(&self) -> String {
+        self.bounds.map_or_else(
+            || "none".into(),
+            |b| format!("{} {} {} {}", mm(b.x0), mm(b.y0), mm(b.x1), mm(b.y1)),
+        )
+    }
+}
+
+/// A length at 0.1 mm, never `-0.0`.
+fn mm(v: f64) -> String {
+    format!("{:.1}", (v * 10.0).round() / 10.0 + 0.0)
 }

@@ -5,6 +5,7 @@
 mod cli;
 mod compat;
 mod determinism;
+mod golden;
 mod kimono;
 mod plot_cli;
 mod readme;

@@ -63,9 +63,14 @@ struct RenderArgs {
     /// Output SVG file.
     #[arg(short, long, default_value = "moyo.svg")]
     output: PathBuf,
-    /// Also write a PNG preview rendered from the SVG.
+    /// Also write a PNG preview, in colour: rendered from the SVG of
+    /// --preview-svg.
     #[arg(long)]
     png: Option<PathBuf>,
+    /// Also write the colour preview as SVG: the plot plus fill colours
+    /// and `%` layers, for looking at, not for plotting.
+    #[arg(long, value_name = "SVG")]
+    preview_svg: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
     #[arg(long, default_value_t = 150.0, value_parser = parse_dpi)]
     dpi: f64,
@@ -185,9 +190,11 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
 
     // Everything is computed before anything is written, so a failure
     // leaves no output file behind.
-    let png = match &args.png {
-        Some(_) => Some(rendered.png(args.dpi)?),
-        None => None,
+    let preview =
+        (args.png.is_some() || args.preview_svg.is_some()).then(|| rendered.preview_svg());
+    let png = match (&args.png, &preview) {
+        (Some(_), Some(svg)) => Some(moyo::output::render_png(svg, args.dpi)?),
+        _ => None,
     };
     let dump = args
         .dump
@@ -195,6 +202,9 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         .map(|_| rendered.dump(spec.output.precision));
 
     write_atomic(&args.output, rendered.svg.as_bytes())?;
+    if let (Some(path), Some(svg)) = (&args.preview_svg, &preview) {
+        write_atomic(path, svg.as_bytes())?;
+    }
     if let (Some(path), Some(bytes)) = (&args.png, &png) {
         write_atomic(path, bytes)?;
     }
@@ -203,15 +213,21 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     }
 
     let stats = rendered.scene.stats();
+    let also: Vec<String> = [&args.preview_svg, &args.png]
+        .into_iter()
+        .flatten()
+        .map(|p| p.display().to_string())
+        .collect();
     eprintln!(
         "wrote {} ({} paths, {:.0} mm pen-down){}",
         args.output.display(),
         stats.paths,
         stats.pen_down_mm,
-        args.png
-            .as_ref()
-            .map(|p| format!(" and {}", p.display()))
-            .unwrap_or_default()
+        if also.is_empty() {
+            String::new()
+        } else {
+            format!(" and {}", also.join(" and "))
+        }
     );
     warn_outside_page(&rendered.scene);
     Ok(())

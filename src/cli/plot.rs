@@ -105,9 +105,14 @@ pub(crate) struct PlotArgs {
     /// Decimals in SVG output (0–8).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
     precision: u8,
-    /// Also write a PNG preview of the result.
+    /// Also write a PNG preview of the result, in colour (rendered from
+    /// the SVG of --preview-svg).
     #[arg(long, help_heading = "Output")]
     png: Option<PathBuf>,
+    /// Also write the colour preview as SVG: the result plus fill colours
+    /// and `%` layers, for looking at, not for plotting.
+    #[arg(long, value_name = "SVG", help_heading = "Output")]
+    preview_svg: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
     #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
     dpi: f64,
@@ -364,7 +369,14 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     let imported = load_svg(&args.input, &job.import)?;
     // Everything is computed before anything is written.
     let plotted = project::plot_scene(imported.scene, &job)?;
+    let preview_svg = args
+        .preview_svg
+        .as_ref()
+        .map(|path| (path, plotted.preview_svg(args.precision)));
     write_atomic(&args.output, plotted.bytes.as_bytes())?;
+    if let Some((path, svg)) = &preview_svg {
+        write_atomic(path, svg.as_bytes())?;
+    }
     if let (Some(path), Some(png)) = (&args.png, &plotted.png) {
         write_atomic(path, png)?;
     }

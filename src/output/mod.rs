@@ -3,8 +3,10 @@
 //!
 //! - [`to_svg`]: layered SVG, one Inkscape layer per pen, page size in mm,
 //!   with the scene description embedded ([`embedded_description`] reads it
-//!   back);
-//! - [`render_png`]: a PNG preview rendered from that SVG text;
+//!   back): the plot, only what pens draw, or the colour preview, which
+//!   adds preview fills and `%` layers ([`SvgOptions::preview`]);
+//! - [`render_png`]: a PNG rendered from SVG text (the colour preview's,
+//!   for a preview);
 //! - [`gcode`] and [`hpgl`]: programs for pen plotters and cutters, both
 //!   written from one stroke model (pens in order, flattened strokes,
 //!   closed or open, page to machine coordinates);

@@ -1,8 +1,10 @@
-//! PNG previews, rendered by resvg from the very SVG text that is written.
+//! PNG previews, rendered by resvg from SVG text: the colour preview
+//! document ([`SvgOptions::preview`](super::SvgOptions::preview)), whose pen
+//! layers are those of the plot SVG byte for byte.
 //!
-//! Rendering the written text rather than the scene means the preview shows
+//! Rendering written text rather than the scene means the preview shows
 //! exactly what a plotter program will read, including any rounding of
-//! coordinates.
+//! coordinates, plus the colours only a person needs.
 
 use resvg::tiny_skia::{Color, Pixmap, Transform};
 use resvg::usvg;

@@ -1,9 +1,20 @@
 //! The layered SVG writer: one Inkscape layer per pen, page size in mm.
 //!
-//! The output is meant to be sent to a plotter or cutter as is (AxiDraw,
-//! vpype, Inkscape all read the layers), and is byte-identical for equal
-//! scenes: element order follows the scene, numbers go through
-//! [`write_number`], and nothing depends on hashing or the machine.
+//! It writes one of two documents of a scene ([`SvgOptions::preview`]):
+//!
+//! - **the plot** (the default): only what pens draw, meant to be sent to a
+//!   plotter or cutter as is. vpype and cutter software draw every path
+//!   they find (only AxiDraw knows to skip `%` layers), so nothing else is
+//!   in it: no layer that is not plotted and no
+//!   [fill-only](crate::scene::Style::fill_only) path (the preview colour
+//!   that hidden-line removal leaves).
+//! - **the colour preview**: the plot plus those, for people to look at
+//!   (`moyo render --preview-svg`) and for the PNG preview. Its pen layers
+//!   are the plot's, byte for byte, with the fill-only paths in between.
+//!
+//! Both are byte-identical for equal scenes: element order follows the
+//! scene, numbers go through [`write_number`], and nothing depends on
+//! hashing or the machine.
 //!
 //! Shape of the document:
 //!
@@ -11,9 +22,9 @@
 //! <?xml …?>
 //! <svg … width="210mm" height="297mm" viewBox="0 0 210 297">   one user unit = 1 mm
 //!  <metadata><moyo:scene …><![CDATA[scene description]]></moyo:scene></metadata>
-//!  <g id="{layer id}" inkscape:groupmode="layer" inkscape:label="%guides"   a layer that
-//!     style="stroke…" transform="translate({margin left} {margin top})">   is not plotted
-//!   <g id="{group id}"> …
+//!  <g id="{layer id}" inkscape:groupmode="layer" inkscape:label="%guides"   preview only:
+//!     style="stroke…" transform="translate({margin left} {margin top})">   a layer that
+//!   <g id="{group id}"> …                                                  is not plotted
 //!  <g id="pen-1" inkscape:groupmode="layer" inkscape:label="1 black" style="stroke…">
 //!   <g id="{layer id}" transform="translate({margin left} {margin top})">
 //!    <g id="{group id}">                    transform="matrix(…)" when not identity
@@ -28,13 +39,14 @@
 //! at least one plotted layer get an Inkscape layer; within a pen, scene
 //! layers are written back to front.
 //!
-//! A scene layer that is not plotted (a *documentation layer*, whose name
-//! starts with `%`: [`Layer::is_plotted`]) is not merged into its pen's
-//! layer: it becomes an Inkscape layer of its own, labelled with the
-//! layer's name exactly as it is (`%guides`, no pen number), which AxiDraw
-//! skips when plotting while Inkscape, vpype and the PNG preview show it.
-//! These layers come first, back to front, so that they paint behind the
-//! drawing; each takes its stroke colour and width from its pen.
+//! In the colour preview, a scene layer that is not plotted (a
+//! *documentation layer*, whose name starts with `%`: [`Layer::is_plotted`])
+//! is not merged into its pen's layer: it becomes an Inkscape layer of its
+//! own, labelled with the layer's name exactly as it is (`%guides`, no pen
+//! number). These layers come first, back to front, so that they paint
+//! behind the drawing; each takes its stroke colour and width from its pen.
+//! The plot leaves them out: AxiDraw would skip them, but vpype and cutter
+//! software do not know the convention and would draw them.
 //!
 //! Stroke colour and width live on the Inkscape layer; a path carries a
 //! `style` only when it has a fill.
@@ -66,14 +78,25 @@ pub struct SvgOptions {
     /// transforms are always written at full precision (8 decimals), since
     /// rounding them would move or resize the whole drawing.
     pub precision: u8,
+    /// Write the colour preview: the plot plus the layers that are not
+    /// plotted and the fill-only paths (see the module documentation).
+    /// Default `false`: the plot, only what pens draw.
+    pub preview: bool,
 }
 
 impl SvgOptions {
     /// The largest precision honoured; larger values are clamped.
     pub const MAX_PRECISION: u8 = MAX_PRECISION;
 
-    /// Three decimals: a micrometre, well below any plotter's step.
-    pub const DEFAULT: SvgOptions = SvgOptions { precision: 3 };
+    /// The plot, at three decimals: a micrometre, well below any
+    /// plotter's step.
+    pub const DEFAULT: SvgOptions = SvgOptions {
+        precision: 3,
+        preview: false,
+    };
+
+    /// The colour preview at three decimals.
+    pub const PREVIEW: SvgOptions = SvgOptions::DEFAULT.with_preview(true);
 
     /// These options with `precision` decimals (clamped to
     /// [`SvgOptions::MAX_PRECISION`]).
@@ -83,6 +106,12 @@ impl SvgOptions {
         } else {
             precision
         };
+        self
+    }
+
+    /// These options writing the colour preview (`true`) or the plot.
+    pub const fn with_preview(mut self, preview: bool) -> SvgOptions {
+        self.preview = preview;
         self
     }
 }
@@ -99,6 +128,7 @@ pub fn to_svg(scene: &Scene, options: &SvgOptions) -> String {
     let mut w = Writer {
         out: String::new(),
         precision: options.precision.min(MAX_PRECISION),
+        preview: options.preview,
     };
     w.document(scene);
     w.out
@@ -151,6 +181,8 @@ struct Writer {
     out: String,
     /// Path coordinate precision, already clamped.
     precision: u8,
+    /// The colour preview rather than the plot.
+    preview: bool,
 }
 
 impl Writer {
@@ -182,8 +214,11 @@ impl Writer {
         }
 
         let back_to_front = scene.layers_back_to_front();
-        let (plotted, unplotted): (Vec<&Layer>, Vec<&Layer>) =
+        let (plotted, mut unplotted): (Vec<&Layer>, Vec<&Layer>) =
             back_to_front.into_iter().partition(|l| l.is_plotted());
+        if !self.preview {
+            unplotted.clear();
+        }
         let page_transform = scene.page_transform().translation();
         let translate = |w: &mut Writer| {
             w.out.push_str(" transform=\"translate(");
@@ -193,7 +228,8 @@ impl Writer {
             w.out.push_str(")\"");
         };
 
-        // Documentation layers: one Inkscape layer each, behind the pens.
+        // Documentation layers: one Inkscape layer each, behind the pens,
+        // in the preview only.
         for layer in unplotted {
             let pen = pen_or_fallback(scene, layer.pen);
             self.indent(1);
@@ -280,6 +316,8 @@ impl Writer {
         for child in &group.children {
             match child {
                 Node::Group(g) => self.group(g, depth + 1),
+                // Preview colour: no pen draws it.
+                Node::Path(p) if p.style.fill_only && !self.preview => {}
                 Node::Path(p) => self.path(p, depth + 1),
             }
         }
@@ -491,8 +529,9 @@ mod tests {
         assert!(svg.contains("stroke:#ff0000;stroke-width:0.25;"));
     }
 
-    #[test]
-    fn unplotted_layers_are_inkscape_layers_of_their_own() {
+    /// The two-pen scene with two documentation layers: `%guides` (pen 3,
+    /// at the back) and `% 1 notes <b>` (pen 1, in front).
+    fn scene_with_documentation_layers() -> Scene {
         let mut scene = two_pen_scene();
         let mut guides = Group::new("guides");
         guides.push_path(
@@ -512,19 +551,32 @@ mod tests {
         n.name = "% 1 notes <b>".into();
         scene.layers.insert(0, n);
         scene.layers.push(g);
-        let svg = to_svg(&scene, &SvgOptions::DEFAULT);
-        let labels: Vec<&str> = svg
-            .lines()
+        scene
+    }
+
+    fn layer_labels(svg: &str) -> Vec<&str> {
+        svg.lines()
             .filter(|l| l.contains("inkscape:groupmode=\"layer\""))
             .map(|l| {
                 let start = l.find("inkscape:label=\"").unwrap() + "inkscape:label=\"".len();
                 &l[start..start + l[start..].find('"').unwrap()]
             })
-            .collect();
+            .collect()
+    }
+
+    /// The document from the first pen layer on.
+    fn from_pen_1(svg: &str) -> &str {
+        &svg[svg.find("<g id=\"pen-1\"").unwrap()..]
+    }
+
+    #[test]
+    fn unplotted_layers_are_inkscape_layers_of_their_own_in_the_preview() {
+        let scene = scene_with_documentation_layers();
+        let svg = to_svg(&scene, &SvgOptions::DEFAULT.with_preview(true));
         // Unplotted first, back to front, labelled by their names alone;
         // pen 3 draws nothing plotted, so it gets no pen layer.
         assert_eq!(
-            labels,
+            layer_labels(&svg),
             [
                 "%guides",
                 "% 1 notes &lt;b&gt;",
@@ -549,8 +601,54 @@ mod tests {
         assert!(b.left() < 5.0 * 96.0 / 25.4 + 1.0, "{b:?}");
         // The plotted layers are written exactly as without the others.
         let plain = to_svg(&two_pen_scene(), &SvgOptions::DEFAULT);
-        let from = |s: &str| s[s.find("<g id=\"pen-1\"").unwrap()..].to_string();
-        assert_eq!(from(&svg), from(&plain));
+        assert_eq!(from_pen_1(&svg), from_pen_1(&plain));
+    }
+
+    #[test]
+    fn the_plot_leaves_unplotted_layers_out() {
+        let scene = scene_with_documentation_layers();
+        let svg = to_svg(&scene, &SvgOptions::DEFAULT);
+        assert_eq!(
+            layer_labels(&svg),
+            ["1 black", "2 red &amp; &quot;fine&quot;"]
+        );
+        for id in ["guides-layer", "frame", "notes-layer", "arrow"] {
+            assert!(!svg.contains(&format!("id=\"{id}\"")), "{id}");
+        }
+        // Exactly the document of the scene without them.
+        assert_eq!(svg, to_svg(&two_pen_scene(), &SvgOptions::DEFAULT));
+    }
+
+    #[test]
+    fn fill_only_paths_are_in_the_preview_only() {
+        let mut scene = two_pen_scene();
+        let Node::Group(front) = &mut scene.layers[1].content.children[1] else {
+            panic!("the flower group")
+        };
+        let mut visible = BezPath::new();
+        visible.move_to((5.0, 5.0));
+        visible.line_to((10.0, 5.0));
+        visible.line_to((7.0, 7.0));
+        visible.close_path();
+        front.children.insert(
+            0,
+            Node::Path(StyledPath {
+                id: "petal.fill".into(),
+                path: visible,
+                style: Style {
+                    fill: Some(Color::rgb(0xdc, 0x14, 0x3c)),
+                    fill_only: true,
+                    ..Style::default()
+                },
+            }),
+        );
+        let preview = to_svg(&scene, &SvgOptions::DEFAULT.with_preview(true));
+        assert!(preview.contains(
+            "<path id=\"petal.fill\" style=\"fill:#dc143c;stroke:none\" d=\"M 5 5 L 10 5 L 7 7 Z\"/>"
+        ));
+        let plot = to_svg(&scene, &SvgOptions::DEFAULT);
+        assert!(!plot.contains("petal.fill") && !plot.contains("stroke:none"));
+        assert_eq!(plot, to_svg(&two_pen_scene(), &SvgOptions::DEFAULT));
     }
 
     #[test]

@@ -124,9 +124,9 @@ pub struct OccludeOptions {
     /// Default [`TOLERANCE`].
     pub tolerance: f64,
     /// Keep the colour of partly hidden filled shapes for the preview, in
-    /// a `%` layer that is not plotted (see the module docs). Default
-    /// `false`: a `%` layer is skipped by AxiDraw and by moyo's outputs,
-    /// but other SVG readers (vpype, cutter software) would draw it.
+    /// a `%` layer that is not plotted (see the module docs): only the
+    /// colour preview shows it; the plot SVG, G-code and HPGL leave it
+    /// out. Default `false`.
     pub preview_fills: bool,
 }
 

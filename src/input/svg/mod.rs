@@ -345,7 +345,7 @@ mod tests {
                 content: guides,
             },
         );
-        let svg = to_svg(&original, &SvgOptions::DEFAULT);
+        let svg = to_svg(&original, &SvgOptions::PREVIEW);
         assert!(
             svg.contains("inkscape:label=\"%guides &amp; notes\""),
             "{svg}"
@@ -383,7 +383,7 @@ mod tests {
                 .path_count()
         );
         // And once more: the label survives a second round.
-        let again = to_svg(scene, &SvgOptions::DEFAULT);
+        let again = to_svg(scene, &SvgOptions::PREVIEW);
         assert!(again.contains("inkscape:label=\"%guides &amp; notes\""));
         assert!(!import(&again).scene.layers[0].is_plotted());
     }
