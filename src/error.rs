@@ -4,6 +4,13 @@
 //! path inside the scene description (`layers[1].trees[0].ratio1`), the
 //! allowed range, and — where the parser knows it — the line and column.
 //! The CLI prefixes the file name.
+//!
+//! Every message is complete on its own line: an error that wraps another
+//! (a file that could not be read, an SVG that did not parse) includes the
+//! cause's text in its own, and keeps the cause as
+//! [`source`](std::error::Error::source) so that a program can look at it
+//! (an [`std::io::ErrorKind`], say). Failures of the geometry engines are
+//! [`Error::Geometry`], never a complaint about the input.
 
 use std::path::PathBuf;
 
@@ -94,17 +101,35 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
-    /// A user motif could not be used.
+    /// A user motif or path file could not be used.
     #[error("motif {name}: {message}")]
     Motif {
-        /// The motif's file as named in the description.
+        /// The file as named in the description.
         name: String,
-        /// What is wrong with it.
+        /// What is wrong with it, including the cause's message.
         message: String,
+        /// The underlying error (unreadable file, SVG that did not parse),
+        /// when there is one.
+        source: Option<Cause>,
     },
     /// The SVG could not be rasterised for the preview.
-    #[error("preview: {0}")]
-    Preview(String),
+    #[error("preview: {message}")]
+    Preview {
+        /// What failed, including the cause's message.
+        message: String,
+        /// The underlying error (SVG parser, PNG encoder), when there is one.
+        source: Option<Cause>,
+    },
+    /// A geometry engine failed on a computation it should be able to do:
+    /// a defect of moyo or of a library it uses, not of the input.
+    #[error(
+        "geometry engine failure: {operation}; please report it with the \
+         scene description and seed"
+    )]
+    Geometry {
+        /// What was being computed.
+        operation: String,
+    },
     /// A file's content is wrong: `source` says what and where in it.
     #[error("{}: {source}", path.display())]
     File {
@@ -167,6 +192,16 @@ impl Error {
         }
     }
 
+    /// An [`Error::Preview`]: `message`, then the cause's own, which is
+    /// kept as the source.
+    pub fn preview(message: &str, cause: impl Into<Cause>) -> Error {
+        let cause = cause.into();
+        Error::Preview {
+            message: format!("{message}: {cause}"),
+            source: Some(cause),
+        }
+    }
+
     /// Attaches an I/O error to the path it concerns.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Error {
         Error::Io {
@@ -175,6 +210,9 @@ impl Error {
         }
     }
 }
+
+/// The cause kept inside an [`Error`] that wraps another library's error.
+pub type Cause = Box<dyn std::error::Error + Send + Sync + 'static>;
 
 /// `Result` with moyo's [`Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use kurbo::BezPath;
 
-use crate::error::{Error, Result};
+use crate::error::{Cause, Error, Result};
 use crate::input::{import_svg, ImportOptions};
 use crate::motif::flora::{user_drawing, Library};
 use crate::motif::{self, Context, Flow};
@@ -71,6 +71,7 @@ pub fn load_motifs(spec: &ValidSpec, base: &Path) -> Result<Library> {
         let drawing = user_drawing(&paths).map_err(|m| Error::Motif {
             name: name.clone(),
             message: format!("{}: {m}", path.display()),
+            source: None,
         })?;
         library.add_user(name.clone(), drawing);
     }
@@ -88,14 +89,15 @@ pub fn load_motifs(spec: &ValidSpec, base: &Path) -> Result<Library> {
 /// The paths of the SVG file `name` (relative to `base`), in its mm.
 fn read_paths(base: &Path, name: &str) -> Result<(std::path::PathBuf, Vec<BezPath>)> {
     let path = base.join(name);
-    let fail = |message: String| Error::Motif {
+    let fail = |message: String, cause: Cause| Error::Motif {
         name: name.to_string(),
-        message,
+        message: format!("{message}: {cause}"),
+        source: Some(cause),
     };
     let text = std::fs::read_to_string(&path)
-        .map_err(|e| fail(format!("cannot read {}: {e}", path.display())))?;
+        .map_err(|e| fail(format!("cannot read {}", path.display()), e.into()))?;
     let imported = import_svg(&text, &ImportOptions::DEFAULT)
-        .map_err(|e| fail(format!("{}: {e}", path.display())))?;
+        .map_err(|e| fail(path.display().to_string(), e.into()))?;
     let mut paths: Vec<BezPath> = Vec::new();
     imported
         .scene

@@ -1368,6 +1368,22 @@ fn missing_user_motif_file_is_named() {
     );
 }
 
+/// The cause of a file error is kept for programs, not only in the text.
+#[test]
+fn missing_user_motif_keeps_the_io_error_as_source() {
+    use std::error::Error as _;
+    let text = flower_scene(r#"["ume", { svg = "nowhere/fan.svg" }]"#, "");
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+    let err = project::load_motifs(&spec, &fixtures()).unwrap_err();
+    let io = err
+        .source()
+        .and_then(|s| s.downcast_ref::<std::io::Error>())
+        .unwrap_or_else(|| panic!("no io::Error source: {err:?}"));
+    assert_eq!(io.kind(), std::io::ErrorKind::NotFound);
+    // The one-line message still says it all.
+    assert!(err.to_string().contains(&io.to_string()), "{err}");
+}
+
 #[test]
 fn user_motif_that_is_not_xml_is_named() {
     render_fails(

@@ -130,10 +130,9 @@ impl Region {
             || polygon_fallback(&[&closed], &[], OverlayRule::Subject, ifill),
             allowance(&[&closed]),
         ) else {
-            return Err(Error::invalid(
-                "region",
-                "the path could not be untangled (geometry engine failure)",
-            ));
+            return Err(Error::Geometry {
+                operation: "untangling a region's outline (every engine failed)".into(),
+            });
         };
         if path.elements().is_empty() {
             return Err(Error::invalid(

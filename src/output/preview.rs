@@ -30,7 +30,7 @@ const MAX_PIXELS: f64 = 400e6;
 pub fn render_png(svg: &str, dpi: f64) -> Result<Vec<u8>> {
     render_pixmap(svg, dpi)?
         .encode_png()
-        .map_err(|e| Error::Preview(format!("cannot encode PNG: {e}")))
+        .map_err(|e| Error::preview("cannot encode PNG", e))
 }
 
 /// Checks a preview resolution: 1–2400 dpi. Callers that take a dpi from a
@@ -50,20 +50,25 @@ pub fn check_dpi(dpi: f64) -> Result<()> {
 fn render_pixmap(svg: &str, dpi: f64) -> Result<Pixmap> {
     check_dpi(dpi)?;
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
-        .map_err(|e| Error::Preview(format!("cannot read SVG: {e}")))?;
+        .map_err(|e| Error::preview("cannot read SVG", e))?;
     let scale = dpi / CSS_DPI;
     let size = tree.size();
     let side = |px: f32| (f64::from(px) * scale).round().max(1.0);
     let (width, height) = (side(size.width()), side(size.height()));
     // Checked in f64, before any cast to u32 could saturate.
     if width * height > MAX_PIXELS {
-        return Err(Error::Preview(format!(
-            "a {width}×{height} pixel image at {dpi} dpi is larger than the \
-             limit of 400 megapixels; lower the dpi"
-        )));
+        return Err(Error::Preview {
+            message: format!(
+                "a {width}×{height} pixel image at {dpi} dpi is larger than the \
+                 limit of 400 megapixels; lower the dpi"
+            ),
+            source: None,
+        });
     }
-    let mut pixmap = Pixmap::new(width as u32, height as u32)
-        .ok_or_else(|| Error::Preview(format!("cannot allocate a {width}×{height} pixel image")))?;
+    let mut pixmap = Pixmap::new(width as u32, height as u32).ok_or_else(|| Error::Preview {
+        message: format!("cannot allocate a {width}×{height} pixel image"),
+        source: None,
+    })?;
     pixmap.fill(Color::WHITE);
     let scale = scale as f32;
     resvg::render(
@@ -156,7 +161,7 @@ mod tests {
         let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"2000mm\" height=\"2000mm\"/>";
         let err = render_png(svg, 2400.0).unwrap_err();
         assert!(
-            matches!(&err, Error::Preview(m) if m.contains("400 megapixels")),
+            matches!(&err, Error::Preview { message, .. } if message.contains("400 megapixels")),
             "{err}"
         );
     }
@@ -164,6 +169,10 @@ mod tests {
     #[test]
     fn unreadable_svg_is_a_preview_error() {
         let err = render_png("not svg", 96.0).unwrap_err();
-        assert!(matches!(err, Error::Preview(_)), "{err}");
+        assert!(matches!(err, Error::Preview { .. }), "{err}");
+        // The parser's error is kept as the source, and its text is in the
+        // message.
+        let cause = std::error::Error::source(&err).expect("a source");
+        assert!(err.to_string().ends_with(&cause.to_string()), "{err}");
     }
 }

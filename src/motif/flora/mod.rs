@@ -151,6 +151,7 @@ impl Library {
         self.paths.get(name).ok_or_else(|| Error::Motif {
             name: name.to_string(),
             message: "was not loaded (path files are read by the caller of the generator)".into(),
+            source: None,
         })
     }
 
@@ -173,6 +174,7 @@ impl Library {
                     name: f.svg.clone(),
                     message: "was not loaded (user motifs are read by the caller of the generator)"
                         .into(),
+                    source: None,
                 })
             }
         };
