@@ -36,6 +36,9 @@
 //! `overrides`. `--counts` and `--override-counts` replace the tree counts of
 //! the scaling and override sections.
 
+// `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
+#![allow(unused_crate_dependencies)]
+
 use std::hint::black_box;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};

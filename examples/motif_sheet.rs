@@ -3,8 +3,11 @@
 //! preview: `cargo run --example motif_sheet -- OUT.svg OUT.png`
 //! (default `motifs.svg` and `motifs.png`).
 
+// `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
+#![allow(unused_crate_dependencies)]
+
 use kurbo::Affine;
-use moyo::motif::flora::{draw, MotifParams};
+use moyo::motif::{draw, MotifParams};
 use moyo::output::{render_png, to_svg, write_atomic, SvgOptions};
 use moyo::spec::MotifKind;
 use moyo::{Color, Group, Layer, Margins, Orientation, Page, PaperName, Pen, Scene, Seed, Style};

@@ -2,6 +2,9 @@
 //!
 //! Run with `cargo run --example single_tree`.
 
+// `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
+#![allow(unused_crate_dependencies)]
+
 use moyo::project;
 use moyo::spec::{Format, SceneSpec};
 

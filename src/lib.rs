@@ -9,10 +9,11 @@
 //!                          → outputs (output: SVG, PNG preview, path dump)
 //! ```
 //!
-//! [`project`] strings the stages together:
+//! [`project`] strings the stages together; its entry points are here at
+//! the root, with the types they take and give:
 //!
 //! ```
-//! use moyo::spec::{Format, SceneSpec};
+//! use moyo::{Format, SceneSpec};
 //!
 //! let spec = SceneSpec::parse(
 //!     r#"
@@ -31,36 +32,63 @@
 //!     "#,
 //!     Format::Toml,
 //! )?;
-//! let rendered = moyo::project::render(&spec)?;
+//! let rendered = moyo::render(&spec)?;
 //! assert!(rendered.svg.contains(r#"inkscape:label="1 black""#));
 //! assert_eq!(rendered.scene.path_count(), 2 * (1 + 4 * 5));
 //!
 //! // The same description and seed always give the same bytes.
-//! assert_eq!(moyo::project::render(&spec)?.svg, rendered.svg);
+//! assert_eq!(moyo::render(&spec)?.svg, rendered.svg);
 //!
 //! // One line per path, for snapshot tests of your own designs.
 //! let dump = rendered.dump(2);
 //! assert!(dump.starts_with("front\tfront.trees-0.tree-0.limb-0\tM "));
 //! # Ok::<(), moyo::Error>(())
 //! ```
+//!
+//! The modules hold the rest: [`spec`] every table of the description (to
+//! build one in code), [`plot`] the plot stages and their options,
+//! [`output`] the writers (SVG, PNG, G-code, HPGL, path dump), [`input`]
+//! SVG import, [`geom`] the geometry toolkit (regions, clipping, offsets,
+//! splines), [`motif`] the motif library, [`templates`] the built-in
+//! scenes, [`units`] paper sizes and lengths. Without the default `cli`
+//! feature the crate is the library alone.
 
-#![warn(missing_docs)]
+// Lints are set in Cargo.toml. Unit tests do not use every dev-dependency
+// (those are the integration tests'), and the `cli` feature's crates are
+// the `moyo` command's, not the library's.
+#![cfg_attr(test, allow(unused_crate_dependencies))]
+// The library never prints: the command and the examples talk to people.
 #![warn(clippy::print_stdout, clippy::print_stderr)]
+#[cfg(feature = "cli")]
+use {clap as _, indicatif as _};
 
-pub mod error;
+mod error;
 pub mod geom;
 pub mod input;
 pub mod motif;
 pub mod output;
 pub mod plot;
 pub mod project;
-pub mod rng;
-pub mod scene;
+mod rng;
+mod scene;
 pub mod spec;
 pub mod templates;
 pub mod units;
 
-pub use error::{Error, LineCol, Result};
+// The chosen entry points, flat as kurbo's: a description becomes a
+// `ValidSpec`, `render` makes the scene and its SVG, `plot_scene` runs a
+// drawing through the plot stages into a plotter's format. The modules hold
+// the rest (stage options, writers' options, the geometry toolkit).
+pub use error::{Cause, Error, LineCol, Result};
+pub use input::{import_svg, ImportOptions, Imported};
+pub use output::{render_png, to_svg, SvgOptions};
+pub use project::{
+    build_scene, load_motifs, plot_scene, read_svg, render, PlotFormat, PlotJob, Plotted, Rendered,
+};
 pub use rng::{RandomStream, Seed};
-pub use scene::{Color, Group, Layer, Node, PathBudget, Pen, Scene, Stats, Style, StyledPath};
+pub use scene::{
+    embedded_description, Color, Group, Layer, Node, PathBudget, Pen, Scene, Stats, Style,
+    StyledPath,
+};
+pub use spec::{Format, SceneSpec, ValidSpec};
 pub use units::{Margins, Orientation, Page, PaperName};

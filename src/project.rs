@@ -10,8 +10,8 @@ use kurbo::BezPath;
 
 use crate::error::{Cause, Error, Result};
 use crate::input::{import_svg, ImportOptions};
-use crate::motif::flora::{user_drawing, Library};
 use crate::motif::{self, Context, Flow};
+use crate::motif::{user_drawing, Library};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot;
 use crate::scene::{Color, Group, Layer, Pen, Scene};
@@ -418,6 +418,31 @@ impl Plotted {
 /// Runs a drawing (typically from [`read_svg`]) through the job: marks
 /// silhouettes when asked, runs the plot stages, writes the output and
 /// renders the preview.
+///
+/// ```
+/// use moyo::output::hpgl::HpglOptions;
+/// use moyo::plot::{MergeOptions, PlotOptions, SortOptions};
+/// use moyo::{import_svg, plot_scene, ImportOptions, PlotFormat, PlotJob};
+///
+/// // Two strokes that meet end to end, drawn in the wrong order.
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="50mm"
+///     viewBox="0 0 100 50">
+///   <path d="M 90 10 L 50 10" stroke="black" fill="none"/>
+///   <path d="M 10 10 L 50 10" stroke="black" fill="none"/>
+/// </svg>"#;
+/// let drawing = import_svg(svg, &ImportOptions::DEFAULT)?.scene;
+/// let stages = PlotOptions {
+///     merge: Some(MergeOptions::DEFAULT),
+///     sort: Some(SortOptions::DEFAULT),
+///     ..PlotOptions::default()
+/// };
+/// let job = PlotJob::new(PlotFormat::Hpgl(HpglOptions::DEFAULT)).with_stages(stages);
+/// let plotted = plot_scene(drawing, &job)?;
+/// // Merged into one stroke: the pen goes down once.
+/// assert_eq!(plotted.scene.path_count(), 1);
+/// assert_eq!(plotted.bytes.matches("PD").count(), 1);
+/// # Ok::<(), moyo::Error>(())
+/// ```
 ///
 /// # Errors
 /// [`Error::Invalid`] for bad stage or format options; the stages' errors

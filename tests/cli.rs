@@ -148,7 +148,7 @@ fn render_without_scene_writes_the_default_design() {
     assert!(svg.contains("height=\"297mm\""));
     assert!(svg.trim_end().ends_with("</svg>"));
     let default = templates::get(templates::DEFAULT).unwrap().spec().unwrap();
-    let embedded = moyo::output::embedded_description(&svg).expect("embedded description");
+    let embedded = moyo::embedded_description(&svg).expect("embedded description");
     assert_eq!(SceneSpec::parse(&embedded, Format::Toml).unwrap(), default);
 
     let png = fs::read(&png_path).unwrap();
@@ -228,7 +228,7 @@ fn render_named_template() {
         );
     }
     let expected = templates::get("tree-rules").unwrap().spec().unwrap();
-    let embedded = moyo::output::embedded_description(&svg).unwrap();
+    let embedded = moyo::embedded_description(&svg).unwrap();
     assert_eq!(SceneSpec::parse(&embedded, Format::Toml).unwrap(), expected);
 }
 
@@ -301,7 +301,7 @@ fn different_seeds_give_different_drawings() {
     let dump = |n: u32| read_text(&dir.path().join(format!("s{n}.dump")));
     assert_ne!(dump(1), dump(2));
     // The seed given on the command line is the one embedded.
-    let embedded = moyo::output::embedded_description(&String::from_utf8(svg(2)).unwrap())
+    let embedded = moyo::embedded_description(&String::from_utf8(svg(2)).unwrap())
         .expect("embedded description");
     assert_eq!(SceneSpec::parse(&embedded, Format::Toml).unwrap().seed, 2);
 }

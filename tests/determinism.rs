@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 
 use proptest::prelude::*;
 
-use moyo::output::embedded_description;
+use moyo::embedded_description;
 use moyo::project::{self, Rendered};
 use moyo::spec::{Format, SceneSpec, TreeOverride, TreeParams, ValidSpec};
 use moyo::templates;

@@ -24,7 +24,7 @@ use tempfile::TempDir;
 
 use moyo::geom::offset::offset;
 use moyo::geom::region::{FillRule, Region};
-use moyo::motif::flora::{Drawing, Library};
+use moyo::motif::{Drawing, Library};
 use moyo::project::{self, Rendered};
 use moyo::spec::{Format, MotifKind, MotifRef, SceneSpec, ValidSpec};
 use moyo::{templates, Scene, Seed};
@@ -1219,7 +1219,7 @@ fn embedded_description_reparses_to_the_rendered_description() {
     let lib = project::load_motifs(&spec, dir.path()).unwrap_or_else(|e| panic!("{e}"));
     let rendered =
         project::render_with_progress(&spec, &lib, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));
-    let text = moyo::output::embedded_description(&rendered.svg).expect("a description");
+    let text = moyo::embedded_description(&rendered.svg).expect("a description");
     assert_eq!(parse(&text), spec);
 }
 

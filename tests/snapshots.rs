@@ -182,7 +182,7 @@ fn tree1_outline() {
 #[test]
 fn every_motif() {
     use kurbo::Affine;
-    use moyo::motif::flora::{draw, MotifParams};
+    use moyo::motif::{draw, MotifParams};
     use moyo::spec::MotifKind;
     use moyo::{Group, Margins, Page, PaperName, Seed, Style};
 
@@ -343,7 +343,7 @@ impl Part {
             .iter()
             .filter(|e| matches!(e, PathEl::MoveTo(_)))
             .count();
-        self.length += moyo::scene::path_length(path);
+        self.length += moyo::geom::path_length(path);
         if !path.elements().is_empty() {
             let b = path.bounding_box();
             self.bounds = Some(self.bounds.map_or(b, |a| a.union(b)));

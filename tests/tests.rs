@@ -2,6 +2,9 @@
 //!
 //! One binary, one module per area; see tests/README.md.
 
+// `unused_crate_dependencies` (Cargo.toml) is for the library: the tests use the library and some dev-dependencies, not each dependency.
+#![allow(unused_crate_dependencies)]
+
 mod cli;
 mod compat;
 mod determinism;

@@ -93,7 +93,7 @@ pub(crate) fn parse_dpi(s: &str) -> Result<f64, String> {
 }
 
 /// Parses the command line and runs it.
-pub fn run() -> ExitCode {
+pub(crate) fn run() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render(&args),
@@ -151,7 +151,7 @@ fn load(args: &RenderArgs) -> Result<(ValidSpec, PathBuf), CliError> {
             Ok((spec, base(path)))
         }
         (None, Some(svg), _) => {
-            let text = moyo::output::embedded_description(&read(svg)?).ok_or_else(|| {
+            let text = moyo::embedded_description(&read(svg)?).ok_or_else(|| {
                 CliError::Message(format!(
                     "{}: carries no scene description (only SVGs written by moyo render can be reopened)",
                     svg.display()

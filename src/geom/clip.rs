@@ -525,9 +525,9 @@ fn refine(c: &Coefs, a: f64, b: f64, start_positive: bool) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::path_length;
     use crate::geom::region::tests::{arb_region, circle, rect};
     use crate::geom::region::FillRule;
-    use crate::scene::path_length;
     use kurbo::{Affine, Circle, CubicBez, ParamCurveNearest, PathEl, Shape};
     use proptest::prelude::*;
 

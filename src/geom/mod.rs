@@ -30,12 +30,21 @@ pub use spline::{natural_spline, natural_spline_cubics};
 pub use taper::tapered_outline;
 pub use walk::PathWalker;
 
-use kurbo::Vec2;
+use kurbo::{BezPath, ParamCurveArclen, Vec2};
 
 /// Default geometric tolerance in millimetres: flattening, nearest-point
 /// searches and curve fitting stay within this distance of the exact curve.
 /// A 0.3 mm pen cannot show an error of 0.01 mm.
 pub const TOLERANCE: f64 = 0.01;
+
+/// Accuracy in mm used for arc-length queries (pen-down length).
+pub const LENGTH_ACCURACY: f64 = 1e-3;
+
+/// Arc length of a path in its own units, summing every segment (the pen
+/// is down along all of them; move-tos lift it).
+pub fn path_length(path: &BezPath) -> f64 {
+    path.segments().map(|s| s.arclen(LENGTH_ACCURACY)).sum()
+}
 
 /// A side of a direction of travel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

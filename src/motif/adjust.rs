@@ -94,7 +94,7 @@ impl<'a> Adjustments<'a> {
 
 /// The map of an adjustment about `anchor` (page mm): scale, then turn
 /// clockwise, about the anchor, then move.
-pub fn about(adjust: Option<&AdjustSpec>, anchor: Point) -> Affine {
+pub(super) fn about(adjust: Option<&AdjustSpec>, anchor: Point) -> Affine {
     let Some(a) = adjust else {
         return Affine::IDENTITY;
     };

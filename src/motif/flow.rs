@@ -8,7 +8,7 @@ use crate::geom::{natural_spline, Side, SideTest};
 use crate::spec::{Points, RegionLinesSpec};
 
 /// Natural spline through control points given as `[x, y]` pairs.
-pub fn flow_line(points: &Points) -> BezPath {
+pub(crate) fn flow_line(points: &Points) -> BezPath {
     let pts: Vec<Point> = points.iter().map(|[x, y]| Point::new(*x, *y)).collect();
     natural_spline(&pts)
 }

@@ -1,28 +1,31 @@
 //! Motif generators: one folder per family, one seam.
 //!
-//! A layer's tables come from [`crate::spec::LayerSpec::items`]; [`build`]
-//! hands each to its family's generator with the shared [`Context`] (seed,
+//! A layer's tables come from [`crate::spec::LayerSpec::items`]; `build`
+//! hands each to its family's generator with the shared `Context` (seed,
 //! library, flow, layer, budget, adjustments, progress) and gets back one
 //! [`Group`] with ids `<layer>.<item>…`. Generators read a validated
 //! description and write groups; they never read or write files.
 //!
-//! Families: [`kimono`] (tree sets with flowers and leaves, backgrounds),
-//! built on [`tree`] (the eight rules) and [`flora`] (vector motifs), and
-//! [`paths`] (user paths placed and repeated). docs/ARCHITECTURE.md says
-//! how to add one.
+//! Families: `kimono` (tree sets with flowers and leaves, backgrounds),
+//! built on `tree` (the eight rules) and `flora` (vector motifs), and
+//! `paths` (user paths placed and repeated). docs/ARCHITECTURE.md says
+//! how to add one. The generators are the crate's own; what a library user
+//! reaches here is the motif [`Library`] (built-in and user motifs),
+//! [`draw`] for one motif on its own, and [`Progress`].
 
-pub mod adjust;
-pub mod flora;
-pub mod kimono;
-pub mod paths;
-pub mod tree;
-
+mod adjust;
 mod context;
+mod flora;
 mod flow;
+mod kimono;
+mod paths;
+mod tree;
 
-pub use adjust::Adjustments;
-pub use context::{Context, Progress};
-pub use flow::{flow_line, Flow};
+pub(crate) use context::Context;
+pub use context::Progress;
+pub(crate) use flora::user_drawing;
+pub use flora::{draw, Drawing, Library, MotifParams};
+pub(crate) use flow::{flow_line, Flow};
 
 use crate::error::Result;
 use crate::scene::Group;

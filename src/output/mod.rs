@@ -2,7 +2,8 @@
 //! into bytes. Writers only read the scene; they never generate geometry.
 //!
 //! - [`to_svg`]: layered SVG, one Inkscape layer per pen, page size in mm,
-//!   with the scene description embedded ([`embedded_description`] reads it
+//!   with the scene description embedded
+//!   ([`embedded_description`](crate::scene::embedded_description) reads it
 //!   back): the plot, only what pens draw, or the colour preview, which
 //!   adds preview fills and `%` layers ([`SvgOptions::preview`]);
 //! - [`render_png`]: a PNG rendered from SVG text (the colour preview's,
@@ -28,4 +29,4 @@ pub use atomic::write_atomic;
 pub use dump::path_dump;
 pub use number::write_number;
 pub use preview::{check_dpi, render_png};
-pub use svg::{embedded_description, to_svg, SvgOptions};
+pub use svg::{to_svg, SvgOptions};

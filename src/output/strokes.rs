@@ -199,7 +199,7 @@ pub(super) struct ToMachine {
 
 impl ToMachine {
     /// `p` in machine millimetres.
-    pub fn map(&self, p: Point) -> Point {
+    pub(super) fn map(&self, p: Point) -> Point {
         let (width, height) = self.page;
         let x = if self.mirror_x { width - p.x } else { p.x };
         let from_edge = if self.from_bottom { height - p.y } else { p.y };
@@ -208,7 +208,7 @@ impl ToMachine {
     }
 
     /// `stroke` in machine millimetres.
-    pub fn stroke(&self, stroke: &Stroke) -> Stroke {
+    pub(super) fn stroke(&self, stroke: &Stroke) -> Stroke {
         Stroke {
             points: stroke.points.iter().map(|&p| self.map(p)).collect(),
             closed: stroke.closed,

@@ -538,8 +538,9 @@ fn hatch_path(path: &BezPath, to_page: Affine, o: &HatchOptions) -> Result<Vec<B
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::path_length;
     use crate::geom::region::tests::{arb_region, circle, rect};
-    use crate::scene::{path_length, Layer, Pen};
+    use crate::scene::{Layer, Pen};
     use crate::units::{Margins, Orientation, Page, PaperName};
     use kurbo::{ParamCurve, ParamCurveNearest, PathEl, Rect, Shape};
     use proptest::prelude::*;

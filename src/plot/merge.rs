@@ -327,8 +327,9 @@ fn append(joined: &mut BezPath, piece: &BezPath) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::path_length;
     use crate::plot::sort::tests::{line, path_set, seg_key, seg_multiset, styled};
-    use crate::scene::{path_length, Color, Style};
+    use crate::scene::{Color, Style};
     use proptest::prelude::*;
 
     fn lengths(paths: &[StyledPath]) -> f64 {

@@ -101,8 +101,8 @@ pub fn repeat_path(path: &BezPath, options: &MultipassOptions) -> BezPath {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::path_length;
     use crate::plot::stats::pen_up_length;
-    use crate::scene::path_length;
     use kurbo::{Circle, Point, Shape};
 
     fn twice() -> MultipassOptions {

@@ -48,11 +48,11 @@
 //! outlines occluding.
 //!
 //! **Silhouettes.** With [`OccludeOptions::silhouettes`], before hiding,
-//! every [solid](Group::solid) group (a tree of [`crate::motif::kimono`]:
-//! one closed outline per limb; [`mark_path_groups_solid`] marks the
-//! groups of an imported drawing) has its closed paths replaced by the outline of their union, a path with the
-//! group's id plus [`SILHOUETTE_SUFFIX`], at the place of the first of
-//! them. Limb outlines that cross inside the tree vanish; without it a
+//! every [solid](Group::solid) group (a tree of the kimono family: one
+//! closed outline per limb; [`mark_path_groups_solid`] marks the groups of
+//! an imported drawing) has its closed paths replaced by the outline of
+//! their union, a path with the group's id plus [`SILHOUETTE_SUFFIX`], at
+//! the place of the first of them. Limb outlines that cross inside the tree vanish; without it a
 //! later limb hides the earlier limbs' outlines inside it, but its own
 //! outline stays visible inside the earlier ones. A group whose closed
 //! paths differ in style (fill) is left alone, as is one with fewer than
@@ -87,10 +87,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::geom::clip::StrokeClipper;
+use crate::geom::path_length;
 use crate::geom::region::{check_coordinates, FillRule, Region};
 use crate::geom::subpath::{is_closed, subpaths};
 use crate::geom::TOLERANCE;
-use crate::scene::{path_length, Group, Layer, Node, Scene, Style, StyledPath};
+use crate::scene::{Group, Layer, Node, Scene, Style, StyledPath};
 
 /// Appended to a group's id to make the id of its silhouette path.
 pub const SILHOUETTE_SUFFIX: &str = ".silhouette";

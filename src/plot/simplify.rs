@@ -174,7 +174,7 @@ fn segment_dist2(a: Point, b: Point, p: Point) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::path_length;
+    use crate::geom::path_length;
     use kurbo::ParamCurveNearest;
     use proptest::prelude::*;
 

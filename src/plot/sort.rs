@@ -605,8 +605,9 @@ impl Tour {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::geom::path_length;
     use crate::plot::stats::pen_up_length;
-    use crate::scene::{path_length, Style};
+    use crate::scene::Style;
     use kurbo::{Line, PathSeg, Shape};
     use proptest::prelude::*;
 

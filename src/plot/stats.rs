@@ -8,7 +8,7 @@
 //! order, in page coordinates.
 //!
 //! - **Pen-down length**: the arc length of every segment (move-tos lift
-//!   the pen), as [`crate::scene::path_length`].
+//!   the pen), as [`crate::geom::path_length`].
 //! - **Pen-up length**: straight moves from the origin (0, 0), the
 //!   plotter's home at the top-left corner of the sheet, to the start of
 //!   the first subpath, and from the end of each subpath to the start of
@@ -35,8 +35,9 @@ use kurbo::{Affine, BezPath, Point};
 use serde::{Deserialize, Serialize};
 
 use super::flatten::by_pen;
+use crate::geom::path_length;
 use crate::geom::subpath::subpaths;
-use crate::scene::{path_length, Scene};
+use crate::scene::Scene;
 
 /// Plotter speeds for the time estimate of [`stats`].
 #[non_exhaustive]

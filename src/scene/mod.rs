@@ -9,16 +9,15 @@
 
 mod budget;
 mod color;
+pub(crate) mod embed;
 
 pub use budget::PathBudget;
 pub use color::Color;
+pub use embed::embedded_description;
 
-use kurbo::{Affine, BezPath, ParamCurveArclen, Rect, Shape};
+use kurbo::{Affine, BezPath, Rect, Shape};
 
 use crate::units::Page;
-
-/// Accuracy in mm used for arc-length queries (pen-down length).
-pub const LENGTH_ACCURACY: f64 = 1e-3;
 
 /// A physical pen (or cutter tool): one SVG layer per pen.
 #[derive(Debug, Clone, PartialEq)]
@@ -260,17 +259,11 @@ impl Scene {
             // Fill-only paths are preview colour; no pen draws them.
             if keep(layer) && !p.style.fill_only {
                 s.paths += 1;
-                s.pen_down_mm += path_length(&(t * p.path.clone()));
+                s.pen_down_mm += crate::geom::path_length(&(t * p.path.clone()));
             }
         });
         s
     }
-}
-
-/// Arc length of a path in its own units, summing every segment (the pen
-/// is down along all of them; move-tos lift it).
-pub fn path_length(path: &BezPath) -> f64 {
-    path.segments().map(|s| s.arclen(LENGTH_ACCURACY)).sum()
 }
 
 #[cfg(test)]

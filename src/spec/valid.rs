@@ -63,6 +63,16 @@ impl ValidSpec {
     /// line and column (it is not in the text); errors found later while
     /// rendering still point into the original text.
     ///
+    /// ```
+    /// let spec = moyo::templates::get("tree-rules")?.spec()?;
+    /// let other = spec.edit(|s| s.seed = 42)?;
+    /// assert_eq!((spec.seed, other.seed), (spec.seed, 42));
+    /// // A change that breaks a rule is refused with the field's path.
+    /// let err = spec.edit(|s| s.output.precision = 99).unwrap_err();
+    /// assert!(err.to_string().starts_with("output.precision: "), "{err}");
+    /// # Ok::<(), moyo::Error>(())
+    /// ```
+    ///
     /// # Errors
     /// As [`ValidSpec::new`].
     pub fn edit(&self, change: impl FnOnce(&mut SceneSpec)) -> Result<ValidSpec> {

@@ -105,7 +105,7 @@ use resvg::usvg::{self, roxmltree};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, LineCol, Result};
-use crate::output::embedded_description;
+use crate::scene::embedded_description;
 use crate::scene::Scene;
 use crate::units::MM_PER_INCH;
 
@@ -174,6 +174,24 @@ pub struct Imported {
 
 /// Reads an SVG document into a scene (see the module documentation for
 /// the mapping and its limits).
+///
+/// ```
+/// use moyo::{import_svg, ImportOptions};
+///
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="20mm"
+///     viewBox="0 0 400 200">
+///   <circle cx="100" cy="100" r="50" stroke="red" fill="none"/>
+///   <text x="10" y="20">not a line</text>
+/// </svg>"#;
+/// let imported = import_svg(svg, &ImportOptions::DEFAULT)?;
+/// // Millimetres: the viewBox is ten units to the millimetre.
+/// let page = &imported.scene.page;
+/// assert_eq!((page.width, page.height), (40.0, 20.0));
+/// assert_eq!(imported.scene.path_count(), 1);
+/// // What could not be plotted is said, not dropped silently.
+/// assert!(imported.warnings.iter().any(|w| w.contains("text")));
+/// # Ok::<(), moyo::Error>(())
+/// ```
 ///
 /// # Errors
 ///

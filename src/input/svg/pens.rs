@@ -340,7 +340,8 @@ pub(super) fn assemble(
 mod tests {
     use super::super::test_support::{assert_rect_near, doc, import, paths};
     use super::super::{import_svg, ImportOptions, PenGrouping};
-    use crate::scene::{path_length, Color};
+    use crate::geom::path_length;
+    use crate::scene::Color;
     use kurbo::{Rect, Shape};
 
     #[test]

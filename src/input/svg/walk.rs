@@ -239,8 +239,9 @@ fn paint_color(paint: &usvg::Paint) -> Color {
 #[cfg(test)]
 mod tests {
     use super::super::test_support::{assert_rect_near, doc, import, near, only_path, paths};
+    use crate::geom::path_length;
     use crate::geom::region::{FillRule, Region};
-    use crate::scene::{path_length, Color};
+    use crate::scene::Color;
     use kurbo::{PathEl, Rect, Shape};
     use std::f64::consts::PI;
 

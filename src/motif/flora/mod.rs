@@ -214,7 +214,7 @@ impl Library {
 ///
 /// # Errors
 /// A message when the drawing is empty or encloses no area.
-pub fn user_drawing(paths: &[BezPath]) -> std::result::Result<Drawing, String> {
+pub(crate) fn user_drawing(paths: &[BezPath]) -> std::result::Result<Drawing, String> {
     let bounds = paths
         .iter()
         .filter(|p| !p.elements().is_empty())

@@ -54,7 +54,11 @@ const SOLID_HATCH: f64 = 1.0;
 const MAX_RANDOM_TILES: usize = 100_000;
 
 /// The background of a layer, as a group `group_id`.
-pub fn background(bg: &BackgroundSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
+pub(crate) fn background(
+    bg: &BackgroundSpec,
+    group_id: &str,
+    cx: &mut Context<'_>,
+) -> Result<Group> {
     let mut group = Group::new(group_id);
     let stamps = stamp_sites(bg, group_id, cx)?;
     let mut rng = cx.stream(&format!("{group_id}.stamp"));

@@ -41,7 +41,7 @@ use crate::spec::{
 
 /// One tree's leaves and flowers, as two groups `<tree>.leaves` and
 /// `<tree>.flowers` (leaves painted first, so flowers are in front).
-pub struct TreeFlora {
+pub(crate) struct TreeFlora {
     /// Ring and joint leaves.
     pub leaves: Group,
     /// Flowers.
@@ -137,7 +137,7 @@ fn put(
 
 /// Flowers and leaves of a grown tree of `set`. `None` when the set has
 /// neither.
-pub fn tree_flora(
+pub(crate) fn tree_flora(
     set: &TreeSetSpec,
     tree: &GrownTree<'_>,
     cx: &mut Context<'_>,

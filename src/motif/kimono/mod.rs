@@ -8,8 +8,8 @@
 //! its set, and per-tree overrides (root, rotate, scale, parameters) are
 //! addressed by that id.
 
-pub mod background;
-pub mod bloom;
+pub(super) mod background;
+pub(super) mod bloom;
 
 use kurbo::{Point, Vec2};
 
@@ -22,7 +22,7 @@ use crate::spec::{Growth as Orientation, TreeOverride, TreeSetSpec};
 
 /// Where one tree of a set stands and how it is scaled.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Placement {
+pub(super) struct Placement {
     /// Root point (mm).
     pub root: Point,
     /// Unit growth direction.
@@ -51,7 +51,7 @@ fn overrides_by_tree(set: &TreeSetSpec) -> Vec<Option<&TreeOverride>> {
 }
 
 /// The placements of a set's trees, overrides applied.
-pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
+pub(super) fn placements(set: &TreeSetSpec) -> Vec<Placement> {
     let walker = PathWalker::new(&flow_line(&set.centre), TOLERANCE);
     let n = set.count as usize;
     overrides_by_tree(set)
@@ -84,7 +84,7 @@ pub fn placements(set: &TreeSetSpec) -> Vec<Placement> {
 }
 
 /// A grown tree, for its flowers and leaves.
-pub struct GrownTree<'s> {
+pub(super) struct GrownTree<'s> {
     /// Its limbs.
     pub skeleton: &'s Skeleton,
     /// Its number in the set (for type 2 motif assignment).
@@ -104,7 +104,7 @@ pub struct GrownTree<'s> {
 /// leaves, or moves its root, turns and scales it before it grows, so the
 /// region lines still hold. Each tree is a [solid](Group::solid) group of
 /// limbs, followed by its leaves and flowers ([`bloom`]).
-pub fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
+pub(super) fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let mut group = Group::new(group_id);
     let limbs = &cx.layer().limbs;
     let style = Style {

@@ -22,7 +22,7 @@ use crate::units::MAX_COORD;
 /// The path budget; an SVG file that was not loaded; an adjustment that
 /// asks for a motif; copies that would reach beyond ±MAX_COORD or number
 /// more than [`MAX_COPIES`].
-pub fn build(spec: &PathsSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
+pub(super) fn build(spec: &PathsSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let mut group = Group::new(group_id);
     let source = source(spec, cx)?;
     let Some(anchor) = anchor(&source, spec.anchor) else {

@@ -18,7 +18,7 @@ use crate::spec::LimbStyle;
 
 /// How limbs are drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LimbLook {
+pub(crate) struct LimbLook {
     /// Outline or centre stroke.
     pub style: LimbStyle,
     /// Width at the root of the trunk, mm.
@@ -33,7 +33,7 @@ pub struct LimbLook {
 const CHILD_WIDTH: f64 = 0.85;
 
 /// The smooth centre curve of a limb.
-pub fn centre_curve(limb: &Limb, bow: f64) -> BezPath {
+pub(super) fn centre_curve(limb: &Limb, bow: f64) -> BezPath {
     match (limb.points.as_slice(), limb.side) {
         ([a, b], Some(side)) => {
             let mut p = BezPath::new();
@@ -47,7 +47,7 @@ pub fn centre_curve(limb: &Limb, bow: f64) -> BezPath {
 }
 
 /// One path per limb, in skeleton order.
-pub fn limb_paths(skeleton: &Skeleton, look: &LimbLook) -> Vec<BezPath> {
+pub(crate) fn limb_paths(skeleton: &Skeleton, look: &LimbLook) -> Vec<BezPath> {
     let widths = base_widths(skeleton, look);
     skeleton
         .limbs

@@ -1,11 +1,11 @@
-//! Trees: the eight recursive rules of the kimono source ([`skeleton`]) and
-//! their smoothing and taper ([`draw`]).
+//! Trees: the eight recursive rules of the kimono source (`skeleton`) and
+//! their smoothing and taper (`draw`).
 
-pub mod draw;
-pub mod skeleton;
+mod draw;
+mod skeleton;
 
 #[cfg(test)]
 mod tests;
 
-pub use draw::{centre_curve, limb_paths, LimbLook};
-pub use skeleton::{grow, Attach, Growth, Limb, LimbKind, Skeleton};
+pub(crate) use draw::{limb_paths, LimbLook};
+pub(crate) use skeleton::{grow, Growth, Skeleton};

@@ -27,7 +27,7 @@ use crate::spec::{ResolvedTreeParams, TreeRule};
 
 /// What part of a tree a limb is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum LimbKind {
+pub(crate) enum LimbKind {
     /// A trunk (Tree7 has two; Tree8's stem along its base curve).
     Trunk,
     /// A Tree6 root branch.
@@ -42,7 +42,7 @@ pub enum LimbKind {
 
 /// Where a limb leaves its parent.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Attach {
+pub(crate) struct Attach {
     /// Index of the parent limb in [`Skeleton::limbs`].
     pub limb: usize,
     /// Index of the parent's vertex the limb starts at.
@@ -51,7 +51,7 @@ pub struct Attach {
 
 /// One limb: a polyline from its base to its tip.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Limb {
+pub(crate) struct Limb {
     /// Vertices, base first; at least two.
     pub points: Vec<Point>,
     /// Trunk, branch, …
@@ -65,25 +65,26 @@ pub struct Limb {
 
 /// All limbs of one tree; parents come before their children.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Skeleton {
+pub(crate) struct Skeleton {
     /// The limbs.
     pub limbs: Vec<Limb>,
 }
 
 impl Skeleton {
     /// Every vertex of every limb.
-    pub fn vertices(&self) -> impl Iterator<Item = Point> + '_ {
+    pub(crate) fn vertices(&self) -> impl Iterator<Item = Point> + '_ {
         self.limbs.iter().flat_map(|l| l.points.iter().copied())
     }
 
     /// Number of limbs of a kind.
-    pub fn count(&self, kind: LimbKind) -> usize {
+    #[cfg(test)]
+    pub(crate) fn count(&self, kind: LimbKind) -> usize {
         self.limbs.iter().filter(|l| l.kind == kind).count()
     }
 }
 
 /// Where a tree grows and what stops it.
-pub struct Growth<'a> {
+pub(crate) struct Growth<'a> {
     /// The root point.
     pub root: Point,
     /// Unit growth direction of the first trunk step.
@@ -94,7 +95,7 @@ pub struct Growth<'a> {
 
 /// Grows a tree of `rule`. Every limb is taken from `budget` before it is
 /// made; `what` names the tree in a budget error.
-pub fn grow(
+pub(crate) fn grow(
     rule: TreeRule,
     params: &ResolvedTreeParams,
     growth: &Growth<'_>,

@@ -4,7 +4,8 @@
 use kurbo::{Point, Vec2};
 use proptest::prelude::*;
 
-use super::*;
+use super::draw::*;
+use super::skeleton::*;
 use crate::error::Error;
 use crate::geom::{natural_spline, Side, SideTest};
 use crate::rng::Seed;
