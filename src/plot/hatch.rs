@@ -540,7 +540,7 @@ mod tests {
     use super::*;
     use crate::geom::path_length;
     use crate::geom::region::tests::{arb_region, circle, rect};
-    use crate::scene::{Layer, Pen};
+    use crate::scene::Layer;
     use crate::units::{Margins, Orientation, Page, PaperName};
     use kurbo::{ParamCurve, ParamCurveNearest, PathEl, Rect, Shape};
     use proptest::prelude::*;
@@ -728,23 +728,10 @@ mod tests {
             Rect::new(0.0, 10.0, 5.0, 15.0).to_path(0.0),
             Style::default(),
         );
-        let mut scene = Scene {
-            page: Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
-            pens: vec![Pen {
-                number: 1,
-                name: "black".into(),
-                color: Color::BLACK,
-                width: 0.3,
-            }],
-            layers: vec![Layer {
-                id: "l".into(),
-                name: "l".into(),
-                pen: 1,
-                depth: 0,
-                content: g,
-            }],
-            description: None,
-        };
+        let mut scene = Scene::one_pen(
+            Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
+            g,
+        );
         let o = HatchOptions::DEFAULT.with_angle_deg(0.0).with_spacing(1.0);
         run(&mut scene, &o).unwrap();
         let mut ids = Vec::new();

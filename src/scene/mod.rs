@@ -196,6 +196,29 @@ pub struct Stats {
 }
 
 impl Scene {
+    /// One layer (id and name `l`) drawn by one black 0.3 mm pen on
+    /// `page`: what most unit tests start from.
+    #[cfg(test)]
+    pub(crate) fn one_pen(page: crate::units::Page, content: Group) -> Scene {
+        Scene {
+            page,
+            pens: vec![Pen {
+                number: 1,
+                name: "black".into(),
+                color: Color::BLACK,
+                width: 0.3,
+            }],
+            layers: vec![Layer {
+                id: "l".into(),
+                name: "l".into(),
+                pen: 1,
+                depth: 0,
+                content,
+            }],
+            description: None,
+        }
+    }
+
     /// The transform from drawable-area coordinates to page coordinates.
     pub fn page_transform(&self) -> Affine {
         Affine::translate((self.page.margins.left, self.page.margins.top))
@@ -287,23 +310,10 @@ mod tests {
             Style::default(),
         );
         g.push_group(inner);
-        Scene {
-            page: Page::named(PaperName::A4, Orientation::Portrait, Margins::uniform(10.0)),
-            pens: vec![Pen {
-                number: 1,
-                name: "black".into(),
-                color: Color::BLACK,
-                width: 0.3,
-            }],
-            layers: vec![Layer {
-                id: "l".into(),
-                name: "l".into(),
-                pen: 1,
-                depth: 0,
-                content: g,
-            }],
-            description: None,
-        }
+        Scene::one_pen(
+            Page::named(PaperName::A4, Orientation::Portrait, Margins::uniform(10.0)),
+            g,
+        )
     }
 
     #[test]
