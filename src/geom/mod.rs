@@ -21,6 +21,7 @@ mod point_index;
 mod side;
 mod spline;
 mod taper;
+mod tour;
 mod walk;
 
 pub use bow::bowed_cubic;
@@ -28,6 +29,7 @@ pub use point_index::PointIndex;
 pub use side::SideTest;
 pub use spline::{natural_spline, natural_spline_cubics};
 pub use taper::tapered_outline;
+pub use tour::{tour, tour_length};
 pub use walk::PathWalker;
 
 use kurbo::{BezPath, ParamCurveArclen, Vec2};

@@ -14,6 +14,7 @@ use crate::error::Result;
 use crate::rng::{RandomStream, Seed};
 use crate::scene::PathBudget;
 use crate::spec::{LayerSpec, ValidSpec};
+use crate::units::Page;
 
 /// How far generation has come, in work units of any family (a tree, a
 /// cell, a plant; see [`crate::spec::Family::work`]).
@@ -37,6 +38,7 @@ struct Frame<'a> {
 /// What every generator needs (see the module docs).
 pub struct Context<'a> {
     seed: Seed,
+    page: Page,
     library: &'a Library,
     flow: &'a Flow,
     layer: Option<Frame<'a>>,
@@ -65,6 +67,7 @@ impl<'a> Context<'a> {
             .sum();
         Context {
             seed: Seed(spec.seed),
+            page: spec.page(),
             library,
             flow,
             layer: None,
@@ -107,6 +110,12 @@ impl<'a> Context<'a> {
     /// The full field path of the table being built (`layers[1].paths[0]`).
     pub fn item_field(&self) -> String {
         format!("layers[{}].{}", self.frame().index, self.item)
+    }
+
+    /// The page the scene is drawn on (its drawable area is inside the
+    /// margins).
+    pub fn page(&self) -> Page {
+        self.page
     }
 
     /// The random stream of the motif with id `id` (a full SVG id): the
