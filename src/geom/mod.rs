@@ -1,7 +1,8 @@
 //! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
 //! path by arc length, the "far side of a line" test, tapered outlines, a
 //! nearest-point index, the reading of a path's subpaths that every stage
-//! shares, and shapes stacked in depth that hide one another.
+//! shares, shapes stacked in depth that hide one another, and Voronoi
+//! cells, Delaunay triangulations and Lloyd relaxation inside a region.
 //!
 //! Coordinates are page coordinates in millimetres with y pointing *down*
 //! (the SVG convention). "Left" and "right" are as seen by someone walking
@@ -15,6 +16,7 @@ pub mod offset;
 pub mod polylabel;
 pub mod region;
 pub mod subpath;
+pub mod voronoi;
 
 mod bow;
 mod point_index;
