@@ -1,7 +1,8 @@
 //! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
 //! path by arc length, the "far side of a line" test, tapered outlines, a
 //! nearest-point index, the reading of a path's subpaths that every stage
-//! shares, and shapes stacked in depth that hide one another.
+//! shares, shapes stacked in depth that hide one another, and points spread
+//! inside a region (uniform, jittered grid, Poisson-disk).
 //!
 //! Coordinates are page coordinates in millimetres with y pointing *down*
 //! (the SVG convention). "Left" and "right" are as seen by someone walking
@@ -14,6 +15,7 @@ pub mod ffd;
 pub mod offset;
 pub mod polylabel;
 pub mod region;
+pub mod sample;
 pub mod subpath;
 
 mod bow;
