@@ -1,8 +1,10 @@
 //! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
 //! path by arc length, the "far side of a line" test, tapered outlines, a
 //! nearest-point index, the reading of a path's subpaths that every stage
-//! shares, shapes stacked in depth that hide one another, and Voronoi
-//! cells, Delaunay triangulations and Lloyd relaxation inside a region.
+//! shares, shapes stacked in depth that hide one another, points spread
+//! inside a region (uniform, jittered grid, Poisson-disk), Voronoi cells,
+//! Delaunay triangulations and Lloyd relaxation inside a region, and one
+//! tour through many points.
 //!
 //! Coordinates are page coordinates in millimetres with y pointing *down*
 //! (the SVG convention). "Left" and "right" are as seen by someone walking
@@ -15,6 +17,7 @@ pub mod ffd;
 pub mod offset;
 pub mod polylabel;
 pub mod region;
+pub mod sample;
 pub mod subpath;
 pub mod voronoi;
 
