@@ -20,6 +20,11 @@
 //!    (`tree2`, 2 generations, `stroke`) without overrides and with one
 //!    override per tree, plus the parse time of the latter.
 //!
+//! 4. **Voronoi cells**: one `[[layers.voronoi]]` table of `uniform` sites
+//!    (1,000 … 100,000) on a 400 × 400 mm page with two round holes,
+//!    drawing the cell network: scene build (sampling, diagram, exact
+//!    clipping, network) and SVG, and the same with 5 Lloyd steps.
+//!
 //! Everything goes to standard output as Markdown tables, ready to paste into
 //! `BENCHMARKS.md`.
 //!
@@ -33,7 +38,7 @@
 //! ```
 //!
 //! `--only` (repeatable) picks sections: `default`, `outline`, `stroke`,
-//! `overrides`. `--counts` and `--override-counts` replace the tree counts of
+//! `overrides`, `voronoi`. `--counts` and `--override-counts` replace the tree counts of
 //! the scaling and override sections.
 
 // `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
@@ -107,10 +112,10 @@ impl Config {
 
 const USAGE: &str = "usage: cargo run --release --example bench -- [--quick] \
     [--runs N] [--warmup N] [--counts N,N,…] [--override-counts N,N,…] \
-    [--only default|outline|stroke|overrides]…";
+    [--only default|outline|stroke|overrides|voronoi]…";
 
 /// The sections of the report, in order.
-const SECTIONS: [&str; 4] = ["default", "outline", "stroke", "overrides"];
+const SECTIONS: [&str; 5] = ["default", "outline", "stroke", "overrides", "voronoi"];
 
 impl Config {
     fn runs_section(&self, name: &str) -> bool {
@@ -466,6 +471,45 @@ fn overrides(cfg: &Config) -> Result<(), moyo::Error> {
     Ok(())
 }
 
+/// `count` uniform sites in a 400 mm square with two round holes, the cell
+/// network drawn, relaxed `relax` times.
+fn voronoi_scene(count: u32, relax: u32) -> String {
+    format!(
+        "version = 1\nseed = 1\npage = {{ size = [400, 400], margin = 0 }}\n\
+         limits = {{ max_paths = 1000000 }}\n\
+         [[layers]]\nname = \"cells\"\n[[layers.voronoi]]\nrelax = {relax}\n\
+         sites = {{ distribution = \"uniform\", count = {count} }}\n\
+         [layers.voronoi.region]\npolygon = [[0, 0], [400, 0], [400, 400], [0, 400]]\n\
+         holes = [{{ circle = {{ centre = [130, 200], radius = 60 }} }}, \
+                  {{ circle = {{ centre = [280, 200], radius = 80 }} }}]\n"
+    )
+}
+
+fn voronoi(cfg: &Config) -> Result<(), moyo::Error> {
+    println!(
+        "### Voronoi cells clipped to a square with two holes ({} runs, {} warm-up)\n",
+        cfg.runs, cfg.warmup
+    );
+    println!("| sites | Lloyd steps | paths | scene ms | SVG ms | scene + SVG ms |");
+    println!("|---:|---:|---:|---:|---:|---:|");
+    for (count, relax) in [(1_000, 0), (10_000, 0), (100_000, 0), (10_000, 5)] {
+        let spec = SceneSpec::parse(&voronoi_scene(count, relax), Format::Toml)?;
+        let (t_scene, scene) = measure(cfg, || build_scene(&spec).expect("scene builds"));
+        let options = svg_options(&spec);
+        let (t_svg, _) = measure(cfg, || to_svg(&scene, &options));
+        println!(
+            "| {} | {relax} | {} | {} | {} | {} |",
+            grouped(count as usize),
+            grouped(scene.path_count()),
+            ms(t_scene.median),
+            ms(t_svg.median),
+            ms(t_scene.median + t_svg.median),
+        );
+    }
+    println!();
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cfg = match Config::from_args() {
         Ok(c) => c,
@@ -488,6 +532,9 @@ fn main() -> ExitCode {
         }
         if cfg.runs_section("overrides") {
             overrides(&cfg)?;
+        }
+        if cfg.runs_section("voronoi") {
+            voronoi(&cfg)?;
         }
         Ok::<(), moyo::Error>(())
     })();

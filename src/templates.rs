@@ -37,6 +37,8 @@ pub const ALL: &[Template] = templates![
     "kimono-8",
     "tomesode-hem",
     "tree-rules",
+    "voronoi-stained-glass",
+    "cracked-earth",
 ];
 
 impl Template {

@@ -7,8 +7,9 @@
 //! description and write groups; they never read or write files.
 //!
 //! Families: `kimono` (tree sets with flowers and leaves, backgrounds),
-//! built on `tree` (the eight rules) and `flora` (vector motifs), and
-//! `paths` (user paths placed and repeated). docs/ARCHITECTURE.md says
+//! built on `tree` (the eight rules) and `flora` (vector motifs),
+//! `paths` (user paths placed and repeated) and `voronoi` (cells, Delaunay
+//! edges, inset cells, stipples and tours inside a region). docs/ARCHITECTURE.md says
 //! how to add one. The generators are the crate's own; what a library user
 //! reaches here is the motif [`Library`] (built-in and user motifs),
 //! [`draw`] for one motif on its own, and [`Progress`].
@@ -20,6 +21,7 @@ mod flow;
 mod kimono;
 mod paths;
 mod tree;
+mod voronoi;
 
 pub(crate) use context::Context;
 pub use context::Progress;
@@ -46,6 +48,7 @@ pub fn build(item: &LayerItem<'_>, cx: &mut Context<'_>) -> Result<Group> {
         Table::Background(t) => kimono::background::background(t, &id, cx),
         Table::Trees(t) => kimono::tree_set(t, &id, cx),
         Table::Paths(t) => paths::build(t, &id, cx),
+        Table::Voronoi(t) => voronoi::build(t, &id, cx),
     }?;
     cx.advance_to(done);
     Ok(group)

@@ -11,7 +11,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{BackgroundSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec};
+use super::{BackgroundSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec, VoronoiSpec};
 use crate::error::Result;
 
 /// One depth layer.
@@ -38,6 +38,9 @@ pub struct LayerSpec {
     /// User paths and point lists, placed and repeated.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub paths: Vec<PathsSpec>,
+    /// Voronoi and Delaunay patterns inside a region.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub voronoi: Vec<VoronoiSpec>,
 }
 
 fn default_pen_number() -> u32 {
@@ -54,6 +57,8 @@ pub enum Table<'a> {
     Trees(&'a TreeSetSpec),
     /// `[[layers.paths]]`: user paths placed and repeated.
     Paths(&'a PathsSpec),
+    /// `[[layers.voronoi]]`: Voronoi and Delaunay patterns in a region.
+    Voronoi(&'a VoronoiSpec),
 }
 
 /// What the seam needs from every family's table.
@@ -89,6 +94,7 @@ impl<'a> Table<'a> {
             Table::Background(t) => t,
             Table::Trees(t) => t,
             Table::Paths(t) => t,
+            Table::Voronoi(t) => t,
         }
     }
 }
@@ -117,6 +123,13 @@ impl LayerSpec {
         }));
         numbered(&mut items, "trees", &self.trees, |t| &t.id, Table::Trees);
         numbered(&mut items, "paths", &self.paths, |t| &t.id, Table::Paths);
+        numbered(
+            &mut items,
+            "voronoi",
+            &self.voronoi,
+            |t| &t.id,
+            Table::Voronoi,
+        );
         items
     }
 }

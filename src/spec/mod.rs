@@ -17,6 +17,7 @@ mod paths;
 mod trees;
 mod valid;
 mod validate;
+mod voronoi;
 
 pub use flora::{
     AdjustSpec, Assign, BackgroundSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec,
@@ -27,6 +28,10 @@ pub use params::{ResolvedTreeParams, TreeParams};
 pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
 pub use trees::{Growth, LimbSpec, LimbStyle, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
+pub use voronoi::{
+    CircleSpec, Distribution, Draw, HoleSpec, RegionSpec, SitesSpec, VoronoiSpec, DEFAULT_SPACING,
+    MAX_SITES,
+};
 
 use serde::{Deserialize, Serialize};
 

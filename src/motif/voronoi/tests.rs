@@ -1,0 +1,303 @@
+//! The Voronoi family through the seam: what each kind draws, shared
+//! sites across layers, what relaxation does, determinism and errors.
+
+use kurbo::{BezPath, Point, Shape};
+
+use crate::error::Error;
+use crate::geom::path_length;
+use crate::geom::region::{FillRule, Region};
+use crate::project::build_scene;
+use crate::scene::Scene;
+use crate::spec::{Format, SceneSpec};
+
+/// A5 with 10 mm margins: the drawable area is 128 × 190 mm.
+const W: f64 = 128.0;
+const H: f64 = 190.0;
+
+fn text(table: &str) -> String {
+    format!(
+        "version = 1\nseed = 5\npage = {{ size = \"A5\", margin = 10 }}\n\
+         [[layers]]\nname = \"l\"\n[[layers.voronoi]]\n{table}"
+    )
+}
+
+fn scene(table: &str) -> Scene {
+    let text = text(table);
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    build_scene(&spec).unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+fn error(table: &str) -> String {
+    let text = text(table);
+    match SceneSpec::parse(&text, Format::Toml).and_then(|s| build_scene(&s)) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The paths of one kind (`cells`, `inset`, …), in layer coordinates.
+fn paths_of(scene: &Scene, kind: &str) -> Vec<BezPath> {
+    let mut out = Vec::new();
+    for layer in &scene.layers {
+        layer
+            .content
+            .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+                if p.id.split('.').nth(2) == Some(kind) {
+                    out.push(t * p.path.clone());
+                }
+            });
+    }
+    out
+}
+
+fn total_length(paths: &[BezPath]) -> f64 {
+    paths.iter().map(path_length).sum()
+}
+
+/// Points of a path (move-tos and line-tos).
+fn vertices(path: &BezPath) -> Vec<Point> {
+    path.elements()
+        .iter()
+        .filter_map(|el| match *el {
+            kurbo::PathEl::MoveTo(p) | kurbo::PathEl::LineTo(p) => Some(p),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn the_cell_network_draws_each_edge_once() {
+    let s = scene("draw = [\"cells\", \"inset\"]\ninset = 0.01\nsites = { spacing = 15 }\n");
+    let network = total_length(&paths_of(&s, "cells"));
+    // Inset by 0.01 mm, the cells' outlines are their perimeters (less
+    // 8 × 0.01 mm a corner at most). Interior edges belong to two cells,
+    // the page's outline to one: the network is half of all perimeters
+    // plus half the outline.
+    let cells = paths_of(&s, "inset");
+    let perimeters = total_length(&cells);
+    let outline = 2.0 * (W + H);
+    let expected = (perimeters + outline) / 2.0;
+    assert!(
+        (network - expected).abs() < 0.01 * expected,
+        "network {network:.1} mm, expected {expected:.1} mm"
+    );
+    // And nothing outside the page.
+    for p in paths_of(&s, "cells") {
+        let b = p.bounding_box();
+        assert!(b.x0 > -1e-6 && b.y0 > -1e-6 && b.x1 < W + 1e-6 && b.y1 < H + 1e-6);
+    }
+}
+
+#[test]
+fn holes_stay_empty_and_cells_stay_in_the_region() {
+    let s = scene(
+        "draw = [\"cells\", \"sites\"]\nsites = { spacing = 8 }\n\
+         [layers.voronoi.region]\ncircle = { centre = [64, 95], radius = 60 }\n\
+         holes = [{ polygon = [[50, 80], [80, 80], [80, 110], [50, 110]] }]\n",
+    );
+    let centre = Point::new(64.0, 95.0);
+    let hole = Region::from_rect(kurbo::Rect::new(50.0, 80.0, 80.0, 110.0)).unwrap();
+    let inner = Region::from_rect(kurbo::Rect::new(50.1, 80.1, 79.9, 109.9)).unwrap();
+    for p in paths_of(&s, "cells") {
+        for v in vertices(&p) {
+            assert!(v.distance(centre) < 60.0 + 0.02, "{v:?} outside the circle");
+            assert!(!inner.contains(v), "{v:?} inside the hole");
+        }
+    }
+    let sites = paths_of(&s, "sites");
+    assert!(sites.len() > 100);
+    for dot in sites {
+        let c = dot.bounding_box().center();
+        assert!(!hole.contains(c) && c.distance(centre) < 60.0, "site {c:?}");
+    }
+}
+
+#[test]
+fn inset_cells_are_smaller_and_round_corners() {
+    let sharp = paths_of(&scene("draw = [\"inset\"]\ninset = 1\n"), "inset");
+    let round = paths_of(
+        &scene("draw = [\"inset\"]\ninset = 1\nround = 2\n"),
+        "inset",
+    );
+    // Opening by the corner radius also takes away cells narrower than
+    // twice inset + round.
+    assert!(round.len() <= sharp.len() && round.len() > sharp.len() * 9 / 10);
+    let area = |ps: &[BezPath]| ps.iter().map(|p| p.area().abs()).sum::<f64>();
+    // Rounding takes the corners off: less area, more vertices.
+    assert!(area(&round) < area(&sharp));
+    let count = |ps: &[BezPath]| ps.iter().map(|p| vertices(p).len()).sum::<usize>();
+    assert!(count(&round) > 2 * count(&sharp));
+    // Inset by 1 mm, the cells leave 2 mm between neighbours: together
+    // they cover clearly less than the page.
+    assert!(area(&sharp) < 0.9 * W * H);
+}
+
+#[test]
+fn relaxation_evens_out_the_cells() {
+    // Cells of uniform random sites vary a lot in size; Lloyd's centroids
+    // even them out (the coefficient of variation of the cell areas falls).
+    let spread = |relax: u32| {
+        let table = format!(
+            "draw = [\"inset\"]\ninset = 0.01\nrelax = {relax}\n\
+             sites = {{ distribution = \"uniform\", count = 150 }}\n"
+        );
+        let areas: Vec<f64> = paths_of(&scene(&table), "inset")
+            .iter()
+            .map(|p| p.area().abs())
+            .collect();
+        let mean = areas.iter().sum::<f64>() / areas.len() as f64;
+        let var = areas.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / areas.len() as f64;
+        var.sqrt() / mean
+    };
+    let (raw, relaxed) = (spread(0), spread(10));
+    assert!(relaxed < 0.5 * raw, "spread {raw:.2} → {relaxed:.2}");
+}
+
+#[test]
+fn the_tour_is_one_line_through_every_site() {
+    let s = scene("draw = [\"tour\", \"sites\"]\nsites = { spacing = 9 }\n");
+    let tour = paths_of(&s, "tour");
+    assert_eq!(tour.len(), 1);
+    let visited = vertices(&tour[0]);
+    let sites: Vec<Point> = paths_of(&s, "sites")
+        .iter()
+        .map(|d| d.bounding_box().center())
+        .collect();
+    assert_eq!(visited.len(), sites.len());
+    for site in &sites {
+        let hits = visited.iter().filter(|v| v.distance(*site) < 1e-6).count();
+        assert_eq!(hits, 1, "site {site:?} visited {hits} times");
+    }
+    // A good tour steps about one spacing from site to site.
+    let step = path_length(&tour[0]) / (visited.len() - 1) as f64;
+    assert!(step < 12.0, "mean step {step:.1} mm");
+}
+
+#[test]
+fn delaunay_edges_join_neighbouring_sites_inside_the_region() {
+    let s = scene(
+        "draw = [\"delaunay\", \"sites\"]\nsites = { spacing = 7 }\n\
+         [layers.voronoi.region]\npolygon = [[5, 5], [120, 5], [120, 90], [60, 90], [60, 40], [5, 40]]\n",
+    );
+    let l = Region::new(
+        {
+            let mut p = BezPath::new();
+            p.move_to((5.0, 5.0));
+            for (x, y) in [
+                (120.0, 5.0),
+                (120.0, 90.0),
+                (60.0, 90.0),
+                (60.0, 40.0),
+                (5.0, 40.0),
+            ] {
+                p.line_to((x, y));
+            }
+            p.close_path();
+            p
+        },
+        FillRule::NonZero,
+    )
+    .unwrap();
+    let strokes = paths_of(&s, "delaunay");
+    let mut edges = 0;
+    for stroke in &strokes {
+        for w in vertices(stroke).windows(2) {
+            edges += 1;
+            // No edge crosses the bay of the L.
+            assert!(l.contains(w[0].midpoint(w[1])), "{:?}–{:?}", w[0], w[1]);
+        }
+    }
+    // A triangulation of n points has about 3n edges, fewer at the hull.
+    let n = paths_of(&s, "sites").len();
+    assert!(
+        edges > 2 * n && edges < 3 * n,
+        "{edges} edges for {n} sites"
+    );
+    // Chained: far fewer strokes than edges.
+    assert!(strokes.len() * 3 < edges);
+}
+
+#[test]
+fn tables_with_one_id_share_their_sites_across_layers() {
+    let text = "version = 1\nseed = 9\npage = { size = \"A5\", margin = 10 }\n\
+        [[layers]]\nname = \"a\"\n[[layers.voronoi]]\nid = \"w\"\ndraw = [\"sites\"]\n\
+        [[layers]]\nname = \"b\"\n[[layers.voronoi]]\nid = \"w\"\ndraw = [\"sites\"]\n\
+        [[layers]]\nname = \"c\"\n[[layers.voronoi]]\nid = \"v\"\ndraw = [\"sites\"]\n";
+    let s = build_scene(&SceneSpec::parse(text, Format::Toml).unwrap()).unwrap();
+    let dots = |layer: usize| {
+        let mut out = Vec::new();
+        s.layers[layer]
+            .content
+            .visit_paths(kurbo::Affine::IDENTITY, &mut |p, _| {
+                out.push(p.path.clone())
+            });
+        out
+    };
+    assert_eq!(dots(0), dots(1));
+    assert_ne!(dots(0), dots(2));
+}
+
+#[test]
+fn the_seed_decides_everything() {
+    let table = "draw = [\"cells\", \"tour\"]\nrelax = 2\n";
+    assert_eq!(scene(table), scene(table));
+    let other = text(table).replace("seed = 5", "seed = 6");
+    let other = build_scene(&SceneSpec::parse(&other, Format::Toml).unwrap()).unwrap();
+    assert_ne!(paths_of(&scene(table), "tour"), paths_of(&other, "tour"));
+}
+
+#[test]
+fn bad_tables_are_refused_with_their_field() {
+    let cases = [
+        (
+            "sites = { distribution = \"uniform\" }\n",
+            "layers[0].voronoi[0].sites.count: the uniform distribution needs a count",
+        ),
+        (
+            "sites = { distribution = \"poisson\", count = 5 }\n",
+            "layers[0].voronoi[0].sites.count: does not apply to the poisson distribution",
+        ),
+        ("draw = []\n", "layers[0].voronoi[0].draw: draws nothing"),
+        (
+            "draw = [\"cells\", \"cells\"]\n",
+            "layers[0].voronoi[0].draw[1]: is listed twice",
+        ),
+        ("relax = 500\n", "layers[0].voronoi[0].relax: must be between 0 and 200"),
+        (
+            "[layers.voronoi.region]\npolygon = [[0, 0], [10, 0], [20, 0]]\n",
+            "layers[0].voronoi[0].region.polygon",
+        ),
+        (
+            "[layers.voronoi.region]\ncircle = { centre = [50, 50], radius = 10 }\n\
+             holes = [{ circle = { centre = [50, 50], radius = 20 } }]\n",
+            "layers[0].voronoi[0].region.holes: leave nothing of the region",
+        ),
+        (
+            "[layers.voronoi.region]\ncircle = { centre = [50, 50], radius = 10 }\npolygon = [[0, 0], [1, 0], [0, 1]]\n",
+            "layers[0].voronoi[0].region: give at most one of circle, polygon, svg",
+        ),
+        (
+            "[layers.voronoi.region]\ncircle = { centre = [nan, 50], radius = 10 }\n",
+            "layers[0].voronoi[0].region.circle.centre",
+        ),
+    ];
+    for (table, expected) in cases {
+        let e = error(table);
+        assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
+    }
+}
+
+#[test]
+fn too_many_sites_fail_fast_on_the_budget() {
+    // 0.1 mm spacing over 128 × 190 mm would be millions of sites.
+    let e = error("sites = { spacing = 0.1 }\n");
+    assert!(
+        e.contains("layers[0].voronoi[0].sites.spacing: would place more than 1000000 sites"),
+        "{e}"
+    );
+    // And the path budget counts every drawn path.
+    let text = text("draw = [\"sites\"]\n")
+        .replace("[[layers]]", "limits = { max_paths = 50 }\n[[layers]]");
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+    assert!(matches!(build_scene(&spec), Err(Error::Budget { .. })));
+}

@@ -1,0 +1,330 @@
+//! `[[layers.voronoi]]`: Voronoi and Delaunay patterns inside a region
+//! (SPEC §3) — cell outlines, Delaunay edges, inset cells (stained glass,
+//! cracked earth), the sites as dots, and one pen-down tour through them.
+//!
+//! The region is the page inside its margins unless a `[region]` names a
+//! circle, a polygon or the closed shapes of an SVG file, less any
+//! `holes`. Sites are spread by `sites.distribution` and then moved
+//! towards their cells' centroids `relax` times (Lloyd).
+
+use serde::{Deserialize, Serialize};
+
+use super::layer::Family;
+use super::validate::{point, points, range};
+use super::Points;
+use crate::error::{Error, Result};
+
+/// A Voronoi/Delaunay pattern on a layer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VoronoiSpec {
+    /// Id of the pattern, unique in its layer (default `voronoi-K`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub id: Option<String>,
+    /// Where the pattern lies (default: the page inside its margins).
+    #[serde(default, skip_serializing_if = "RegionSpec::is_page")]
+    pub region: RegionSpec,
+    /// How the sites are spread.
+    #[serde(default)]
+    pub sites: SitesSpec,
+    /// Lloyd relaxation: this many times each site moves to its cell's
+    /// centroid, evening out the cells (0–200, default 0).
+    #[serde(default, skip_serializing_if = "is_zero_u32")]
+    pub relax: u32,
+    /// What is drawn, in this order (default `["cells"]`).
+    #[serde(default = "default_draw")]
+    pub draw: Vec<Draw>,
+    /// With `"inset"`: how far each cell's outline moves in, mm (0.01–100,
+    /// default 1). Cells narrower than twice this vanish.
+    #[serde(default = "default_inset")]
+    pub inset: f64,
+    /// With `"inset"`: radius of the inset cells' rounded corners, mm (0–50,
+    /// default 0, sharp). Cells narrower than twice `inset + round` vanish.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub round: f64,
+    /// With `"sites"`: radius of the circle drawn at each site, mm (0.05–50,
+    /// default 0.3).
+    #[serde(default = "default_dot")]
+    pub dot: f64,
+}
+
+/// One kind of line a Voronoi pattern draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Draw {
+    /// The cell outlines, clipped to the region; shared edges drawn once.
+    Cells,
+    /// The Delaunay edges between neighbouring sites, inside the region.
+    Delaunay,
+    /// Each cell shrunk by `inset` (and rounded by `round`): stained glass,
+    /// cracked earth.
+    Inset,
+    /// A small circle of radius `dot` at each site: stippling.
+    Sites,
+    /// One pen-down line through every site (nearest neighbour, then 2-opt).
+    Tour,
+}
+
+/// Where a pattern lies: at most one outer shape, less the holes.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSpec {
+    /// A circle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub circle: Option<CircleSpec>,
+    /// A polygon through these points (≥ 3, mm).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polygon: Option<Points>,
+    /// The closed shapes of an SVG file, relative to the description, in
+    /// its own millimetres; shapes inside shapes are holes (even-odd).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub svg: Option<String>,
+    /// Shapes cut out of the region.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub holes: Vec<HoleSpec>,
+}
+
+impl RegionSpec {
+    fn is_page(&self) -> bool {
+        *self == RegionSpec::default()
+    }
+}
+
+/// A circle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CircleSpec {
+    /// Centre, mm.
+    pub centre: [f64; 2],
+    /// Radius, mm (0.1–100,000).
+    pub radius: f64,
+}
+
+/// A shape cut out of a region: a circle or a polygon.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HoleSpec {
+    /// A circle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub circle: Option<CircleSpec>,
+    /// A polygon (≥ 3 points, mm).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polygon: Option<Points>,
+}
+
+/// How sites are spread over the region.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SitesSpec {
+    /// The distribution (default `"poisson"`).
+    #[serde(default)]
+    pub distribution: Distribution,
+    /// With `"uniform"`: how many sites (1–1,000,000).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub count: Option<u32>,
+    /// With `"grid"` and `"poisson"`: the distance between sites, mm
+    /// (0.1–10,000; default 10).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spacing: Option<f64>,
+    /// With `"grid"`: how far each site may move from its grid point, as a
+    /// fraction of half the spacing (0–1, default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub jitter: Option<f64>,
+}
+
+/// A distribution of sites.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Distribution {
+    /// Independent uniform points: clumps and gaps.
+    Uniform,
+    /// A square grid, each point moved at random by up to `jitter`.
+    Grid,
+    /// Poisson-disk: no two sites closer than `spacing`, no gap wider than
+    /// twice it. Even without looking regular.
+    #[default]
+    Poisson,
+}
+
+/// The most sites one pattern may have.
+pub const MAX_SITES: usize = 1_000_000;
+
+/// Distance between sites when `spacing` is not given, mm.
+pub const DEFAULT_SPACING: f64 = 10.0;
+
+fn default_draw() -> Vec<Draw> {
+    vec![Draw::Cells]
+}
+
+fn default_inset() -> f64 {
+    1.0
+}
+
+fn default_dot() -> f64 {
+    0.3
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+fn is_zero_u32(v: &u32) -> bool {
+    *v == 0
+}
+
+impl SitesSpec {
+    /// The spacing of `grid` and `poisson` sites, mm.
+    pub fn spacing(&self) -> f64 {
+        self.spacing.unwrap_or(DEFAULT_SPACING)
+    }
+
+    /// The jitter of `grid` sites (0–1).
+    pub fn jitter(&self) -> f64 {
+        self.jitter.unwrap_or(0.5)
+    }
+
+    fn check(&self, f: &str) -> Result<()> {
+        let allowed: &[&str] = match self.distribution {
+            Distribution::Uniform => &["count"],
+            Distribution::Grid => &["spacing", "jitter"],
+            Distribution::Poisson => &["spacing"],
+        };
+        for (key, set) in [
+            ("count", self.count.is_some()),
+            ("spacing", self.spacing.is_some()),
+            ("jitter", self.jitter.is_some()),
+        ] {
+            if set && !allowed.contains(&key) {
+                return Err(Error::invalid(
+                    format!("{f}.{key}"),
+                    format!(
+                        "does not apply to the {} distribution (it takes {})",
+                        self.distribution.name(),
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+        if self.distribution == Distribution::Uniform && self.count.is_none() {
+            return Err(Error::invalid(
+                format!("{f}.count"),
+                "the uniform distribution needs a count (1–1,000,000)",
+            ));
+        }
+        if let Some(n) = self.count {
+            range(&format!("{f}.count"), n, 1, MAX_SITES as u32)?;
+        }
+        if let Some(s) = self.spacing {
+            range(&format!("{f}.spacing"), s, 0.1, 10_000.0)?;
+        }
+        if let Some(j) = self.jitter {
+            range(&format!("{f}.jitter"), j, 0.0, 1.0)?;
+        }
+        Ok(())
+    }
+}
+
+impl Distribution {
+    fn name(self) -> &'static str {
+        match self {
+            Distribution::Uniform => "uniform",
+            Distribution::Grid => "grid",
+            Distribution::Poisson => "poisson",
+        }
+    }
+}
+
+impl CircleSpec {
+    fn check(&self, f: &str) -> Result<()> {
+        point(&format!("{f}.centre"), self.centre)?;
+        range(&format!("{f}.radius"), self.radius, 0.1, 100_000.0)
+    }
+}
+
+/// Checks that exactly one (`outer`: at most one) shape is given.
+fn one_shape(f: &str, given: &[(&str, bool)], outer: bool) -> Result<()> {
+    let n = given.iter().filter(|(_, set)| *set).count();
+    let names: Vec<&str> = given.iter().map(|(k, _)| *k).collect();
+    if n > 1 || (!outer && n == 0) {
+        let what = if outer { "at most one" } else { "exactly one" };
+        return Err(Error::invalid(
+            f,
+            format!("give {what} of {}", names.join(", ")),
+        ));
+    }
+    Ok(())
+}
+
+impl RegionSpec {
+    fn check(&self, f: &str) -> Result<()> {
+        one_shape(
+            f,
+            &[
+                ("circle", self.circle.is_some()),
+                ("polygon", self.polygon.is_some()),
+                ("svg", self.svg.is_some()),
+            ],
+            true,
+        )?;
+        if let Some(c) = &self.circle {
+            c.check(&format!("{f}.circle"))?;
+        }
+        if let Some(p) = &self.polygon {
+            points(&format!("{f}.polygon"), p, 3)?;
+        }
+        if let Some(svg) = &self.svg {
+            if svg.trim().is_empty() {
+                return Err(Error::invalid(format!("{f}.svg"), "needs a file name"));
+            }
+        }
+        for (i, h) in self.holes.iter().enumerate() {
+            let hf = format!("{f}.holes[{i}]");
+            one_shape(
+                &hf,
+                &[
+                    ("circle", h.circle.is_some()),
+                    ("polygon", h.polygon.is_some()),
+                ],
+                false,
+            )?;
+            if let Some(c) = &h.circle {
+                c.check(&format!("{hf}.circle"))?;
+            }
+            if let Some(p) = &h.polygon {
+                points(&format!("{hf}.polygon"), p, 3)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Family for VoronoiSpec {
+    fn check(&self, f: &str) -> Result<()> {
+        self.region.check(&format!("{f}.region"))?;
+        self.sites.check(&format!("{f}.sites"))?;
+        range(&format!("{f}.relax"), self.relax, 0, 200)?;
+        if self.draw.is_empty() {
+            return Err(Error::invalid(
+                format!("{f}.draw"),
+                "draws nothing: list one or more of cells, delaunay, inset, sites, tour",
+            ));
+        }
+        for (i, d) in self.draw.iter().enumerate() {
+            if self.draw[..i].contains(d) {
+                return Err(Error::invalid(format!("{f}.draw[{i}]"), "is listed twice"));
+            }
+        }
+        range(&format!("{f}.inset"), self.inset, 0.01, 100.0)?;
+        range(&format!("{f}.round"), self.round, 0.0, 50.0)?;
+        range(&format!("{f}.dot"), self.dot, 0.05, 50.0)
+    }
+
+    /// One unit per relaxation step and one for drawing.
+    fn work(&self) -> usize {
+        self.relax as usize + 1
+    }
+
+    fn path_files(&self) -> Vec<&str> {
+        self.region.svg.as_deref().into_iter().collect()
+    }
+}
