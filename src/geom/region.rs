@@ -155,6 +155,28 @@ impl Region {
         Region::new(rect.to_path(0.0), FillRule::NonZero)
     }
 
+    /// The region inside the closed polygon through `points` (non-zero
+    /// rule: a polygon that crosses itself is untangled, loops wound twice
+    /// count once).
+    ///
+    /// # Errors
+    /// As [`Region::new`]: fewer than three points, or points in a line,
+    /// enclose no area.
+    pub fn polygon(points: &[Point]) -> Result<Region> {
+        let mut path = BezPath::new();
+        for (i, p) in points.iter().enumerate() {
+            if i == 0 {
+                path.move_to(*p);
+            } else {
+                path.line_to(*p);
+            }
+        }
+        if !points.is_empty() {
+            path.close_path();
+        }
+        Region::new(path, FillRule::NonZero)
+    }
+
     /// The empty region.
     pub fn empty() -> Region {
         Region::default()
@@ -811,6 +833,29 @@ pub(crate) mod tests {
         assert!(r.contains(Point::new(5.0, 2.5)));
         assert!(!r.contains(Point::new(11.0, 2.5)));
         assert_eq!(r.fill_rule(), FillRule::NonZero);
+    }
+
+    #[test]
+    fn polygons_enclose_their_shoelace_area() {
+        let l = [
+            (0.0, 0.0),
+            (30.0, 0.0),
+            (30.0, 10.0),
+            (10.0, 10.0),
+            (10.0, 20.0),
+            (0.0, 20.0),
+        ]
+        .map(Point::from);
+        let r = Region::polygon(&l).unwrap();
+        assert!((r.area() - 400.0).abs() < 1e-9);
+        assert!(r.contains(Point::new(5.0, 15.0)) && !r.contains(Point::new(20.0, 15.0)));
+        // The same points the other way round: the same region.
+        let mut back = l;
+        back.reverse();
+        assert!((Region::polygon(&back).unwrap().area() - 400.0).abs() < 1e-9);
+        for few in [&l[..0], &l[..2], &[l[0], l[1], Point::new(60.0, 0.0)][..]] {
+            assert!(Region::polygon(few).is_err(), "{few:?}");
+        }
     }
 
     #[test]

@@ -757,20 +757,14 @@ mod tests {
     use crate::geom::region::FillRule;
     use crate::geom::PointIndex;
     use crate::rng::Seed;
-    use kurbo::BezPath;
 
     fn stream(seed: u64) -> RandomStream {
         Seed(seed).derive("sample").stream()
     }
 
     fn polygon(points: &[(f64, f64)]) -> Region {
-        let mut path = BezPath::new();
-        path.move_to(points[0]);
-        for &p in &points[1..] {
-            path.line_to(p);
-        }
-        path.close_path();
-        Region::new(path, FillRule::NonZero).unwrap()
+        let points: Vec<Point> = points.iter().map(|&p| p.into()).collect();
+        Region::polygon(&points).unwrap()
     }
 
     /// An L: the 60 × 60 square without its top right 30 × 30 quarter.

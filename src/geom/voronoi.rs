@@ -1550,13 +1550,8 @@ mod tests {
     }
 
     fn polygon_region(points: &[(f64, f64)]) -> Region {
-        let mut path = BezPath::new();
-        path.move_to(points[0]);
-        for &p in &points[1..] {
-            path.line_to(p);
-        }
-        path.close_path();
-        Region::new(path, FillRule::NonZero).unwrap()
+        let points: Vec<Point> = points.iter().map(|&p| p.into()).collect();
+        Region::polygon(&points).unwrap()
     }
 
     /// An L: the 10×10 square without its top-right 5×5 quarter (y down).

@@ -3,7 +3,7 @@
 //! SVG file, less the holes. Like every coordinate of a description, they
 //! are millimetres from the top left corner inside the margins.
 
-use kurbo::{BezPath, Circle, Point, Rect, Shape};
+use kurbo::{Circle, Point, Rect, Shape};
 
 use super::super::Context;
 use crate::error::{Error, Result};
@@ -74,13 +74,8 @@ fn circle(c: &CircleSpec, field: &str) -> Result<Region> {
 }
 
 fn polygon(points: &[[f64; 2]], field: &str) -> Result<Region> {
-    let mut path = BezPath::new();
-    path.move_to((points[0][0], points[0][1]));
-    for [x, y] in &points[1..] {
-        path.line_to((*x, *y));
-    }
-    path.close_path();
-    Region::new(path, FillRule::NonZero).map_err(|e| at(field, e))
+    let points: Vec<Point> = points.iter().map(|&[x, y]| Point::new(x, y)).collect();
+    Region::polygon(&points).map_err(|e| at(field, e))
 }
 
 /// A region's complaint about its shape, put on the description's field.

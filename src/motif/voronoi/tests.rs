@@ -5,7 +5,7 @@ use kurbo::{BezPath, Point, Shape};
 
 use crate::error::Error;
 use crate::geom::path_length;
-use crate::geom::region::{FillRule, Region};
+use crate::geom::region::Region;
 use crate::project::build_scene;
 use crate::scene::Scene;
 use crate::spec::{Format, SceneSpec};
@@ -179,24 +179,14 @@ fn delaunay_edges_join_neighbouring_sites_inside_the_region() {
         "draw = [\"delaunay\", \"sites\"]\nsites = { spacing = 7 }\n\
          [layers.voronoi.region]\npolygon = [[5, 5], [120, 5], [120, 90], [60, 90], [60, 40], [5, 40]]\n",
     );
-    let l = Region::new(
-        {
-            let mut p = BezPath::new();
-            p.move_to((5.0, 5.0));
-            for (x, y) in [
-                (120.0, 5.0),
-                (120.0, 90.0),
-                (60.0, 90.0),
-                (60.0, 40.0),
-                (5.0, 40.0),
-            ] {
-                p.line_to((x, y));
-            }
-            p.close_path();
-            p
-        },
-        FillRule::NonZero,
-    )
+    let l = Region::polygon(&[
+        Point::new(5.0, 5.0),
+        Point::new(120.0, 5.0),
+        Point::new(120.0, 90.0),
+        Point::new(60.0, 90.0),
+        Point::new(60.0, 40.0),
+        Point::new(5.0, 40.0),
+    ])
     .unwrap();
     let strokes = paths_of(&s, "delaunay");
     let mut edges = 0;
@@ -300,4 +290,35 @@ fn too_many_sites_fail_fast_on_the_budget() {
         .replace("[[layers]]", "limits = { max_paths = 50 }\n[[layers]]");
     let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
     assert!(matches!(build_scene(&spec), Err(Error::Budget { .. })));
+}
+
+#[test]
+fn an_svg_outline_is_a_region_with_its_inner_shapes_as_holes() {
+    use crate::motif::Library;
+    use crate::project::build_scene_with_progress;
+    // A frame: a 100 mm square with a 40 mm square inside (even-odd: a hole).
+    let mut frame = BezPath::new();
+    for (x0, x1) in [(10.0, 110.0), (40.0, 80.0)] {
+        frame.move_to((x0, x0));
+        frame.line_to((x1, x0));
+        frame.line_to((x1, x1));
+        frame.line_to((x0, x1));
+        frame.close_path();
+    }
+    let mut library = Library::new();
+    library.add_paths("frame.svg", frame);
+    let text =
+        text("draw = [\"sites\"]\nsites = { spacing = 5 }\nregion = { svg = \"frame.svg\" }\n");
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+    let s = build_scene_with_progress(&spec, &library, &mut |_| {}).unwrap();
+    let sites: Vec<Point> = paths_of(&s, "sites")
+        .iter()
+        .map(|d| d.bounding_box().center())
+        .collect();
+    // About 0.63 sites per spacing² over 100² − 40² mm²: 212.
+    assert!(sites.len() > 180 && sites.len() < 260, "{} sites", sites.len());
+    for p in sites {
+        let inside = |lo: f64, hi: f64| p.x > lo && p.x < hi && p.y > lo && p.y < hi;
+        assert!(inside(10.0, 110.0) && !inside(40.0, 80.0), "{p:?}");
+    }
 }
