@@ -9,7 +9,7 @@ use std::path::Path;
 use kurbo::BezPath;
 
 use crate::error::{Cause, Error, Result};
-use crate::input::{import_svg, ImportOptions};
+use crate::input::{decode_image, import_svg, ImportOptions};
 use crate::motif::{self, Context, Flow};
 use crate::motif::{user_drawing, Library};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
@@ -38,6 +38,9 @@ pub fn user_files(spec: &ValidSpec) -> UserFiles {
     for name in items.iter().flat_map(|i| i.table.family().path_files()) {
         push_new(&mut files.paths, name);
     }
+    for name in items.iter().flat_map(|i| i.table.family().image_files()) {
+        push_new(&mut files.images, name);
+    }
     files
 }
 
@@ -48,6 +51,8 @@ pub struct UserFiles {
     pub motifs: Vec<String>,
     /// SVG files whose paths are placed as they are.
     pub paths: Vec<String>,
+    /// PNG or JPEG files read as density.
+    pub images: Vec<String>,
 }
 
 fn push_new(list: &mut Vec<String>, name: &str) {
@@ -60,49 +65,82 @@ fn push_new(list: &mut Vec<String>, name: &str) {
 /// taken relative to `base` (the directory of the description file).
 ///
 /// # Errors
-/// [`Error::Motif`] naming the file: unreadable, not an SVG, or — for a
-/// motif — without a closed shape to serve as its outline. The reason is
-/// kept as the error's source.
+/// [`Error::Motif`] naming the file: unreadable, not an SVG (not a PNG or
+/// JPEG for an image), or — for a motif — without a closed shape to serve
+/// as its outline. The reason is kept as the error's source.
 pub fn load_motifs(spec: &ValidSpec, base: &Path) -> Result<Library> {
+    load_motifs_with(spec, &|name| {
+        let path = base.join(name);
+        (path.display().to_string(), std::fs::read(&path))
+    })
+}
+
+/// [`load_motifs`] from anywhere: `read` gives the bytes of a file the
+/// description names, with the name to show in messages (a path, or
+/// where else it came from: a built-in template's files are compiled in).
+///
+/// # Errors
+/// As [`load_motifs`].
+pub fn load_motifs_with(spec: &ValidSpec, read: &FileReader<'_>) -> Result<Library> {
     let mut library = Library::new();
     let files = user_files(spec);
+    let open = |name: &str| {
+        let (shown, bytes) = read(name);
+        match bytes {
+            Ok(bytes) => Ok((shown, bytes)),
+            Err(e) => Err(unusable(name, format!("cannot read {shown}"), e.into())),
+        }
+    };
     for name in &files.motifs {
-        let (path, paths) = read_paths(base, name)?;
+        let (shown, bytes) = open(name)?;
+        let paths = svg_paths(name, &shown, &bytes)?;
         let drawing = user_drawing(&paths).map_err(|m| Error::Motif {
             name: name.clone(),
-            message: format!("{}: {m}", path.display()),
+            message: format!("{shown}: {m}"),
             source: None,
         })?;
         library.add_user(name.clone(), drawing);
     }
     for name in &files.paths {
-        let (_, paths) = read_paths(base, name)?;
+        let (shown, bytes) = open(name)?;
         let mut joined = BezPath::new();
-        for p in paths {
+        for p in svg_paths(name, &shown, &bytes)? {
             joined.extend(p.elements().iter().copied());
         }
         library.add_paths(name.clone(), joined);
     }
+    for name in &files.images {
+        let (shown, bytes) = open(name)?;
+        let image = decode_image(&bytes).map_err(|e| unusable(name, shown, e.into()))?;
+        library.add_image(name.clone(), image);
+    }
     Ok(library)
 }
 
-/// The paths of the SVG file `name` (relative to `base`), in its mm.
-fn read_paths(base: &Path, name: &str) -> Result<(std::path::PathBuf, Vec<BezPath>)> {
-    let path = base.join(name);
-    let fail = |message: String, cause: Cause| Error::Motif {
+/// Where [`load_motifs_with`] gets a file: its name as the description
+/// writes it → the name to show in messages (a path) and the file's bytes.
+pub type FileReader<'a> = dyn Fn(&str) -> (String, std::io::Result<Vec<u8>>) + 'a;
+
+/// A user file that could not be used: `message`, then the cause's own.
+fn unusable(name: &str, message: String, cause: Cause) -> Error {
+    Error::Motif {
         name: name.to_string(),
         message: format!("{message}: {cause}"),
         source: Some(cause),
-    };
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| fail(format!("cannot read {}", path.display()), e.into()))?;
-    let imported = import_svg(&text, &ImportOptions::DEFAULT)
-        .map_err(|e| fail(path.display().to_string(), e.into()))?;
+    }
+}
+
+/// The paths of the SVG file `name` (shown as `shown`), in its mm.
+fn svg_paths(name: &str, shown: &str, bytes: &[u8]) -> Result<Vec<BezPath>> {
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| unusable(name, format!("{shown} is not UTF-8 text"), e.into()))?;
+    let imported = import_svg(text, &ImportOptions::DEFAULT)
+        .map_err(|e| unusable(name, shown.to_string(), e.into()))?;
     let mut paths: Vec<BezPath> = Vec::new();
     imported
         .scene
         .visit_paths(|_, p, t| paths.push(t * p.path.clone()));
-    Ok((path, paths))
+    Ok(paths)
 }
 
 /// Builds the scene of a description, reading user files relative to the

@@ -1,6 +1,10 @@
-//! The ready scene descriptions in `templates/`, built into the binary.
+//! The ready scene descriptions in `templates/`, built into the binary,
+//! with the files they read (images under `templates/images/`), so a
+//! template renders anywhere, not only beside the repository's files.
 
 use crate::error::{Error, Result};
+use crate::motif::Library;
+use crate::project::{load_motifs_with, render_with_progress, Rendered};
 use crate::spec::{Format, SceneSpec, ValidSpec};
 
 /// A built-in scene description.
@@ -39,6 +43,7 @@ pub const ALL: &[Template] = templates![
     "tree-rules",
     "voronoi-stained-glass",
     "cracked-earth",
+    "stipple-portrait",
 ];
 
 impl Template {
@@ -53,6 +58,45 @@ impl Template {
             .ok()
             .and_then(|s| s.into_inner().description)
             .unwrap_or_default()
+    }
+}
+
+/// The files templates read, by the name they use (relative to
+/// `templates/`), compiled in.
+pub const FILES: &[(&str, &[u8])] = &[(
+    "images/portrait.jpg",
+    include_bytes!("../templates/images/portrait.jpg"),
+)];
+
+/// A built-in file by the name a template uses for it.
+pub fn file(name: &str) -> Option<&'static [u8]> {
+    FILES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, bytes)| *bytes)
+}
+
+impl Template {
+    /// The user files the template names, read from the built-in
+    /// [`FILES`].
+    ///
+    /// # Errors
+    /// [`Error::Motif`] for a file that is not built in or cannot be used.
+    pub fn library(&self) -> Result<Library> {
+        load_motifs_with(&self.spec()?, &|name| {
+            let bytes = file(name).map(<[u8]>::to_vec).ok_or_else(|| {
+                std::io::Error::new(std::io::ErrorKind::NotFound, "not among the built-in files")
+            });
+            (format!("built-in {name}"), bytes)
+        })
+    }
+
+    /// The template rendered with its built-in files.
+    ///
+    /// # Errors
+    /// As [`crate::render`].
+    pub fn render(&self) -> Result<Rendered> {
+        render_with_progress(&self.spec()?, &self.library()?, &mut |_| {})
     }
 }
 

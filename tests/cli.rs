@@ -703,3 +703,40 @@ fn output_into_a_missing_directory_fails_cleanly() {
         .stderr(predicate::str::contains("out.svg"));
     assert!(entries(dir.path()).is_empty());
 }
+
+/// A template that reads an image renders anywhere (its files are built
+/// in), and `moyo new` writes them beside the description it writes.
+#[test]
+fn templates_bring_their_own_files() {
+    let dir = tempdir();
+    moyo(&dir)
+        .args(["render", "-t", "stipple-portrait", "-o", "a.svg"])
+        .assert()
+        .success();
+    fs::create_dir(dir.path().join("mine")).unwrap();
+    moyo(&dir)
+        .args(["new", "stipple-portrait", "-o", "mine/p.toml"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("images/portrait.jpg"));
+    assert_eq!(
+        fs::read(dir.path().join("mine/images/portrait.jpg")).unwrap(),
+        moyo::templates::file("images/portrait.jpg").unwrap()
+    );
+    moyo(&dir)
+        .args(["render", "mine/p.toml", "-o", "b.svg"])
+        .assert()
+        .success();
+    // The same drawing either way.
+    let a = fs::read_to_string(dir.path().join("a.svg")).unwrap();
+    let b = fs::read_to_string(dir.path().join("b.svg")).unwrap();
+    assert_eq!(a, b);
+    // An image that is not there is named, with no output left behind.
+    fs::remove_file(dir.path().join("mine/images/portrait.jpg")).unwrap();
+    moyo(&dir)
+        .args(["render", "mine/p.toml", "-o", "c.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("images/portrait.jpg"));
+    assert!(!dir.path().join("c.svg").exists());
+}

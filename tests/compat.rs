@@ -23,8 +23,7 @@ fn rendered() -> &'static [(&'static str, Rendered)] {
         templates::ALL
             .iter()
             .map(|t| {
-                let spec = t.spec().unwrap_or_else(|e| panic!("{}: {e}", t.name));
-                let r = moyo::project::render(&spec).unwrap_or_else(|e| panic!("{}: {e}", t.name));
+                let r = t.render().unwrap_or_else(|e| panic!("{}: {e}", t.name));
                 (t.name, r)
             })
             .collect()

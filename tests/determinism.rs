@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 use proptest::prelude::*;
 
 use moyo::embedded_description;
+use moyo::motif::Library;
 use moyo::project::{self, Rendered};
 use moyo::spec::{Format, SceneSpec, TreeOverride, TreeParams, ValidSpec};
 use moyo::templates;
@@ -205,7 +206,11 @@ fn overriding_one_tree_leaves_its_siblings_unchanged() {
 
 /// The description embedded in the SVG of `spec` parses back to `spec`,
 /// and renders to the same SVG.
-fn assert_embedded_round_trip(spec: &SceneSpec) {
+fn assert_embedded_round_trip(spec: &SceneSpec, library: &Library) {
+    let render = |spec: &SceneSpec| {
+        let spec = spec.clone().validate().unwrap_or_else(|e| panic!("{e}"));
+        project::render_with_progress(&spec, library, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"))
+    };
     let rendered = render(spec);
     let text = embedded_description(&rendered.svg).expect("the SVG embeds its description");
     let back = SceneSpec::parse(&text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n{text}"));
@@ -219,7 +224,8 @@ fn assert_embedded_round_trip(spec: &SceneSpec) {
 #[test]
 fn embedded_description_of_every_template_parses_back() {
     for t in templates::ALL {
-        assert_embedded_round_trip(&t.spec().unwrap());
+        // A template's files (images) are built in.
+        assert_embedded_round_trip(&t.spec().unwrap(), &t.library().unwrap());
     }
 }
 
@@ -269,7 +275,7 @@ root = [50.5, 60.25]
 rotate = -0.0
 "##;
     let spec = SceneSpec::parse(text, Format::Toml).unwrap_or_else(|e| panic!("{e}"));
-    assert_embedded_round_trip(&spec);
+    assert_embedded_round_trip(&spec, &Library::new());
 }
 
 #[test]
@@ -279,7 +285,7 @@ fn embedded_description_of_a_json_scene_parses_back() {
             "centre": [[20, 200], [100, 180], [190, 210]],
             "params": {"generations": 4, "jitter_angle": 12.5}}]}]}"#;
     let spec = SceneSpec::parse(json, Format::Json).unwrap();
-    assert_embedded_round_trip(&spec);
+    assert_embedded_round_trip(&spec, &Library::new());
 }
 
 /// A small scene with arbitrary (valid) numbers.

@@ -219,8 +219,7 @@ fn every_motif() {
 #[test]
 fn every_template() {
     for t in templates::ALL {
-        let spec = t.spec().unwrap_or_else(|e| panic!("{}: {e}", t.name));
-        let rendered = project::render(&spec).unwrap_or_else(|e| panic!("{}: {e}", t.name));
+        let rendered = t.render().unwrap_or_else(|e| panic!("{}: {e}", t.name));
         assert!(rendered.scene.path_count() > 0, "{} draws nothing", t.name);
         insta::assert_snapshot!(format!("template-{}", t.name), summary(&rendered.scene));
     }

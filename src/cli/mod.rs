@@ -135,7 +135,7 @@ pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
 /// Loads the scene to render — a file, the description embedded in an SVG,
 /// a named template or the default — with the directory its user motifs
 /// are read from.
-fn load(args: &RenderArgs) -> Result<(ValidSpec, PathBuf), CliError> {
+fn load(args: &RenderArgs) -> Result<(ValidSpec, Files), CliError> {
     let read = |path: &Path| {
         std::fs::read_to_string(path)
             .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))
@@ -148,7 +148,7 @@ fn load(args: &RenderArgs) -> Result<(ValidSpec, PathBuf), CliError> {
         (Some(path), _, _) => {
             let spec = SceneSpec::parse(&read(path)?, Format::from_path(path))
                 .map_err(|e| CliError::Message(format!("{}:{e}", path.display())))?;
-            Ok((spec, base(path)))
+            Ok((spec, Files::Dir(base(path))))
         }
         (None, Some(svg), _) => {
             let text = moyo::embedded_description(&read(svg)?).ok_or_else(|| {
@@ -160,17 +160,25 @@ fn load(args: &RenderArgs) -> Result<(ValidSpec, PathBuf), CliError> {
             let spec = SceneSpec::parse(&text, Format::Toml).map_err(|e| {
                 CliError::Message(format!("{} (embedded description):{e}", svg.display()))
             })?;
-            Ok((spec, base(svg)))
+            Ok((spec, Files::Dir(base(svg))))
         }
         (None, None, name) => {
-            let name = name.as_deref().unwrap_or(templates::DEFAULT);
-            Ok((templates::get(name)?.spec()?, PathBuf::from(".")))
+            let template = templates::get(name.as_deref().unwrap_or(templates::DEFAULT))?;
+            Ok((template.spec()?, Files::Template(template)))
         }
     }
 }
 
+/// Where the files a description names are read from.
+enum Files {
+    /// Beside the description (or the SVG it came from).
+    Dir(PathBuf),
+    /// A built-in template's own files.
+    Template(&'static templates::Template),
+}
+
 fn render(args: &RenderArgs) -> Result<(), CliError> {
-    let (spec, base) = load(args)?;
+    let (spec, files) = load(args)?;
     // The overrides go through the same validation as the file.
     let spec = spec
         .edit(|s| {
@@ -184,7 +192,11 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::Message(format!("command line: {e}")))?;
 
     let bar = DelayedBar::new();
-    let library = project::load_motifs(&spec, &base)?;
+    let library = match &files {
+        Files::Dir(base) => project::load_motifs(&spec, base)?,
+        // Overrides (seed, precision) name no files: the template's own.
+        Files::Template(t) => t.library()?,
+    };
     let rendered = project::render_with_progress(&spec, &library, &mut |p| bar.update(p))?;
     bar.finish();
 
@@ -270,16 +282,47 @@ fn list_templates() -> Result<(), CliError> {
 
 fn new(name: &str, output: Option<&Path>) -> Result<(), CliError> {
     let t = templates::get(name)?;
+    // The files the template reads (images) go beside the description, so
+    // it renders from there as it is.
+    let files = project::user_files(&t.spec()?);
+    let names: Vec<&String> = files
+        .motifs
+        .iter()
+        .chain(&files.paths)
+        .chain(&files.images)
+        .collect();
     match output {
         Some(path) => {
             write_atomic(path, t.text.as_bytes())?;
             eprintln!("wrote {}", path.display());
+            let dir = path.parent().unwrap_or(Path::new("."));
+            for name in names {
+                let target = dir.join(name);
+                if target.exists() {
+                    eprintln!("kept {} (already there)", target.display());
+                    continue;
+                }
+                let bytes = templates::file(name).ok_or_else(|| {
+                    CliError::Message(format!("template {}: {name} is not built in", t.name))
+                })?;
+                if let Some(parent) = target.parent() {
+                    std::fs::create_dir_all(parent)
+                        .map_err(|e| CliError::Message(format!("{}: {e}", parent.display())))?;
+                }
+                write_atomic(&target, bytes)?;
+                eprintln!("wrote {}", target.display());
+            }
             Ok(())
         }
-        None => std::io::stdout()
-            .lock()
-            .write_all(t.text.as_bytes())
-            .map_err(stdout_error),
+        None => {
+            for name in names {
+                eprintln!("note: this template reads {name}; `moyo new {} -o FILE` writes it beside the description", t.name);
+            }
+            std::io::stdout()
+                .lock()
+                .write_all(t.text.as_bytes())
+                .map_err(stdout_error)
+        }
     }
 }
 

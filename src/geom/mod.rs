@@ -12,6 +12,7 @@
 //! is towards smaller x.
 
 pub mod clip;
+pub mod density;
 pub mod depth;
 pub mod ffd;
 pub mod offset;

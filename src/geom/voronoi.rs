@@ -1195,9 +1195,11 @@ pub fn lloyd_step(sites: &[Point], domain: &Domain, options: &CellOptions) -> Re
 /// into `n²` triangles (`n` = [`CellOptions::density_subdivisions`]) with
 /// `density` sampled at three interior points of each (a rule exact for
 /// quadratic functions): linear in the number of cells. Negative or
-/// non-finite density values count as 0. A cell with no mass falls back to
-/// its area centroid; a centroid outside the region is handled as in
-/// [`lloyd_step`].
+/// non-finite density values count as 0. A site whose cell has no mass
+/// stays where it is: nothing pulls it anywhere, and moving it to its
+/// cell's area centroid would walk it out into the blank parts (a white
+/// margin of an image) step by step. A centroid outside the region is
+/// handled as in [`lloyd_step`].
 ///
 /// # Errors
 /// As [`Diagram::new`].
@@ -1231,8 +1233,7 @@ fn relax(
             None => (area_moments, area_moments.centroid(origin)),
             Some(rho) => {
                 let m = Moments::weighted(&cell.contours, origin, rho, n);
-                let c = m.centroid(origin).or_else(|| area_moments.centroid(origin));
-                (m, c)
+                (m, m.centroid(origin))
             }
         };
         energy += moments.second;
@@ -2130,11 +2131,24 @@ mod tests {
         })
         .unwrap();
         assert!(next.energy < step.energy);
-        // A density of zero (or NaN) everywhere falls back to the area
-        // centroid.
+        // Where the density is zero (or NaN) nothing pulls a site: it
+        // stays, rather than drifting into the blank part.
         let nan = weighted_lloyd_step(&sites, &d, &CellOptions::DEFAULT, &|_| f64::NAN).unwrap();
+        assert_eq!(nan.sites, sites);
+        let left = |p: Point| if p.x < 50.0 { 1.0 } else { 0.0 };
+        let half = weighted_lloyd_step(&sites, &d, &CellOptions::DEFAULT, &left).unwrap();
         let plain = lloyd_step(&sites, &d, &CellOptions::DEFAULT).unwrap();
-        assert_eq!(nan.sites, plain.sites);
+        let diagram = Diagram::new(&sites, &d, &CellOptions::DEFAULT).unwrap();
+        for (i, cell) in diagram.cells().iter().enumerate() {
+            let b = cell.to_path().bounding_box();
+            if b.x0 > 50.0 {
+                assert_eq!(half.sites[i], sites[i], "a site on the blank side moved");
+            } else if b.x1 < 50.0 {
+                // Uniform density there: the area centroid, up to the
+                // quadrature's rounding.
+                assert!(half.sites[i].distance(plain.sites[i]) < 1e-9);
+            }
+        }
     }
 
     #[test]

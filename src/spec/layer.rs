@@ -85,6 +85,12 @@ pub trait Family {
     fn path_files(&self) -> Vec<&str> {
         Vec::new()
     }
+
+    /// The PNG or JPEG files it reads as density, relative to the
+    /// description.
+    fn image_files(&self) -> Vec<&str> {
+        Vec::new()
+    }
 }
 
 impl<'a> Table<'a> {

@@ -32,6 +32,7 @@ use kurbo::{Affine, BezPath, Point, Shape};
 
 use crate::error::{Error, Result};
 use crate::geom::clip::clip_stroke;
+use crate::geom::density::GreyImage;
 use crate::geom::offset::offset;
 use crate::geom::region::{FillRule, Region};
 use crate::geom::subpath::subpaths;
@@ -109,6 +110,7 @@ pub fn draw(kind: MotifKind, params: &MotifParams, rng: &mut RandomStream) -> Dr
 pub struct Library {
     user: BTreeMap<String, Drawing>,
     paths: BTreeMap<String, BezPath>,
+    images: BTreeMap<String, GreyImage>,
     plain: RwLock<Plain>,
 }
 
@@ -120,6 +122,7 @@ impl Clone for Library {
         Library {
             user: self.user.clone(),
             paths: self.paths.clone(),
+            images: self.images.clone(),
             plain: RwLock::new(self.cached().clone()),
         }
     }
@@ -141,6 +144,24 @@ impl Library {
     /// it (the `svg` of a `[[layers.paths]]` table), in the file's mm.
     pub fn add_paths(&mut self, name: impl Into<String>, paths: BezPath) {
         self.paths.insert(name.into(), paths);
+    }
+
+    /// Adds a density image under the name the description uses for it
+    /// (the `image` of a `[[layers.voronoi]]` table's sites).
+    pub fn add_image(&mut self, name: impl Into<String>, image: GreyImage) {
+        self.images.insert(name.into(), image);
+    }
+
+    /// The image loaded under `name`.
+    ///
+    /// # Errors
+    /// [`Error::Motif`] when no image of that name was loaded.
+    pub fn image(&self, name: &str) -> Result<&GreyImage> {
+        self.images.get(name).ok_or_else(|| Error::Motif {
+            name: name.to_string(),
+            message: "was not loaded (images are read by the caller of the generator)".into(),
+            source: None,
+        })
     }
 
     /// The paths loaded under `name`.

@@ -24,9 +24,12 @@ use kurbo::{BezPath, Circle, Point, Shape};
 use super::adjust::about;
 use super::Context;
 use crate::error::{Error, Result};
+use crate::geom::density::Density;
 use crate::geom::offset::offset;
 use crate::geom::region::Region;
-use crate::geom::voronoi::{delaunay_edges, lloyd_step, CellOptions, Diagram, Domain};
+use crate::geom::voronoi::{
+    delaunay_edges, lloyd_step, weighted_lloyd_step, CellOptions, Diagram, Domain,
+};
 use crate::geom::{sample, tour, TOLERANCE};
 use crate::rng::RandomStream;
 use crate::scene::{Group, Style};
@@ -46,9 +49,18 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
     // glass can go to two pens.
     let table_id = group_id.rsplit('.').next().unwrap_or(group_id);
     let mut rng = cx.stream(&format!("voronoi/{table_id}"));
-    let mut sites = sites(spec, &region, &mut rng, cx)?;
+    let image = match &spec.sites.image {
+        Some(name) => Some(cx.library().image(name)?),
+        None => None,
+    };
+    let density = image.map(|img| Density::fitted(img, region.bounds()));
+    let mut sites = sites(spec, &region, density.as_ref(), &mut rng, cx)?;
     for _ in 0..spec.relax {
-        sites = lloyd_step(&sites, &domain, &options)?.sites;
+        let step = match &density {
+            Some(d) => weighted_lloyd_step(&sites, &domain, &options, &|p| d.at(p))?,
+            None => lloyd_step(&sites, &domain, &options)?,
+        };
+        sites = step.sites;
         cx.advance(1);
     }
     let mut group = Group::new(group_id);
@@ -125,10 +137,12 @@ fn numbered(id: &str, what: &str, paths: Vec<BezPath>) -> Vec<(String, BezPath)>
         .collect()
 }
 
-/// The sites of the pattern, spread as the description says.
+/// The sites of the pattern, spread as the description says, denser where
+/// `density` is dark.
 fn sites(
     spec: &VoronoiSpec,
     region: &Region,
+    density: Option<&Density<'_>>,
     rng: &mut RandomStream,
     cx: &Context<'_>,
 ) -> Result<Vec<Point>> {
@@ -163,18 +177,70 @@ fn sites(
         }
         other => other,
     };
-    match s.distribution {
-        Distribution::Uniform => {
+    match (s.distribution, density) {
+        (Distribution::Uniform, None) => {
             sample::uniform(region, s.count.unwrap_or(1) as usize, rng).map_err(renamed)
         }
-        Distribution::Grid => {
-            sample::jittered_grid(region, s.spacing(), s.jitter(), rng).map_err(renamed)
+        (Distribution::Uniform, Some(d)) => {
+            darkness_sampled(region, s.count.unwrap_or(1) as usize, d, rng, cx)
         }
-        Distribution::Poisson => {
+        (Distribution::Grid, _) => {
+            let mut grid =
+                sample::jittered_grid(region, s.spacing(), s.jitter(), rng).map_err(renamed)?;
+            if let Some(d) = density {
+                grid.retain(|p| rng.unit() < d.at(*p));
+            }
+            Ok(grid)
+        }
+        (Distribution::Poisson, None) => {
             let r = s.spacing();
             sample::poisson_disk(region, &|_| r, r..=r, rng, MAX_SITES).map_err(renamed)
         }
+        (Distribution::Poisson, Some(d)) => {
+            // Area per site in proportion to lightness: the radius grows
+            // as 1/√darkness, up to ten times the spacing on white.
+            let r = s.spacing();
+            let radius = |p: Point| r / d.at(p).max(0.01).sqrt();
+            sample::poisson_disk(region, &radius, r..=10.0 * r, rng, MAX_SITES).map_err(renamed)
+        }
     }
+}
+
+/// Most tries per site wanted when placing sites by darkness: an image
+/// that is almost white over the region cannot hold them.
+const TRIES_PER_SITE: usize = 1000;
+
+/// `count` sites placed at random with a probability in proportion to the
+/// darkness under them (rejection sampling).
+fn darkness_sampled(
+    region: &Region,
+    count: usize,
+    density: &Density<'_>,
+    rng: &mut RandomStream,
+    cx: &Context<'_>,
+) -> Result<Vec<Point>> {
+    let mut sites = Vec::with_capacity(count);
+    let mut tries = 0;
+    while sites.len() < count {
+        let batch = (count - sites.len()).max(64);
+        tries += batch;
+        if tries > TRIES_PER_SITE * count {
+            return Err(Error::invalid(
+                cx.field("sites.image"),
+                format!(
+                    "is too light over the region to place {count} sites \
+                     ({} placed in {tries} tries); use a darker image or fewer sites",
+                    sites.len()
+                ),
+            ));
+        }
+        for p in sample::uniform(region, batch, rng)? {
+            if sites.len() < count && rng.unit() < density.at(p) {
+                sites.push(p);
+            }
+        }
+    }
+    Ok(sites)
 }
 
 /// Each cell shrunk by `inset` and, with `round`, its corners rounded: the

@@ -316,9 +316,114 @@ fn an_svg_outline_is_a_region_with_its_inner_shapes_as_holes() {
         .map(|d| d.bounding_box().center())
         .collect();
     // About 0.63 sites per spacing² over 100² − 40² mm²: 212.
-    assert!(sites.len() > 180 && sites.len() < 260, "{} sites", sites.len());
+    assert!(
+        sites.len() > 180 && sites.len() < 260,
+        "{} sites",
+        sites.len()
+    );
     for p in sites {
         let inside = |lo: f64, hi: f64| p.x > lo && p.x < hi && p.y > lo && p.y < hi;
         assert!(inside(10.0, 110.0) && !inside(40.0, 80.0), "{p:?}");
     }
+}
+
+/// The scene of `table` with a library holding `image` as `ramp.png`.
+fn scene_with_image(table: &str, image: crate::geom::density::GreyImage) -> Result<Scene, Error> {
+    use crate::motif::Library;
+    use crate::project::build_scene_with_progress;
+    let mut library = Library::new();
+    library.add_image("ramp.png", image);
+    let spec = SceneSpec::parse(&text(table), Format::Toml)?;
+    build_scene_with_progress(&spec, &library, &mut |_| {})
+}
+
+/// Darkness rising from 0 on the left to 1 on the right, 64 × 95 px (the
+/// drawable area's aspect, so it fills the page region).
+fn ramp() -> crate::geom::density::GreyImage {
+    let (w, h) = (64, 95);
+    let d = (0..h)
+        .flat_map(|_| (0..w).map(move |x| (x as f32 + 0.5) / w as f32))
+        .collect();
+    crate::geom::density::GreyImage::new(w, h, d).unwrap()
+}
+
+/// Sites per vertical band of the page, left to right.
+fn bands(s: &Scene, n: usize) -> Vec<usize> {
+    let mut counts = vec![0; n];
+    for dot in paths_of(s, "sites") {
+        let x = dot.bounding_box().center().x;
+        counts[((x / W * n as f64) as usize).min(n - 1)] += 1;
+    }
+    counts
+}
+
+/// Pearson correlation of two series.
+fn correlation(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len() as f64;
+    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
+    let cov: f64 = a.iter().zip(b).map(|(x, y)| (x - ma) * (y - mb)).sum();
+    let va: f64 = a.iter().map(|x| (x - ma).powi(2)).sum();
+    let vb: f64 = b.iter().map(|y| (y - mb).powi(2)).sum();
+    cov / (va * vb).sqrt()
+}
+
+#[test]
+fn stipples_follow_the_image_darkness() {
+    // Weighted Voronoi stippling: sites placed by darkness, then Lloyd
+    // steps weighted by it. The count per band follows the darkness.
+    let table = "draw = [\"sites\"]\nrelax = 8\n\
+                 sites = { distribution = \"uniform\", count = 1500, image = \"ramp.png\" }\n";
+    let s = scene_with_image(table, ramp()).unwrap();
+    let counts = bands(&s, 8);
+    assert_eq!(counts.iter().sum::<usize>(), 1500);
+    let darkness: Vec<f64> = (0..8).map(|i| (i as f64 + 0.5) / 8.0).collect();
+    let counts_f: Vec<f64> = counts.iter().map(|&c| c as f64).collect();
+    let r = correlation(&darkness, &counts_f);
+    assert!(r > 0.95, "correlation {r:.3}, counts {counts:?}");
+    // The darkest band holds several times the lightest.
+    assert!(counts[7] > 4 * counts[0].max(1), "{counts:?}");
+    // Poisson-disk sites too: spacing grows where the image is light.
+    let s = scene_with_image(
+        "draw = [\"sites\"]\nsites = { spacing = 3, image = \"ramp.png\" }\n",
+        ramp(),
+    )
+    .unwrap();
+    let counts = bands(&s, 4);
+    assert!(counts[3] > 2 * counts[0], "{counts:?}");
+}
+
+#[test]
+fn a_white_image_cannot_hold_sites() {
+    let white = crate::geom::density::GreyImage::new(4, 4, vec![0.0; 16]).unwrap();
+    let e = scene_with_image(
+        "sites = { distribution = \"uniform\", count = 10, image = \"ramp.png\" }\n",
+        white,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("layers[0].voronoi[0].sites.image: is too light"),
+        "{e}"
+    );
+}
+
+#[test]
+fn images_are_read_by_the_caller_from_png_or_jpeg() {
+    // The description names the file; load_motifs reads it relative to the
+    // description's folder.
+    let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
+    let table = "draw = [\"sites\"]\nsites = { distribution = \"uniform\", count = 50, image = \"ramp.jpg\" }\n";
+    let spec = SceneSpec::parse(&text(table), Format::Toml).unwrap();
+    let library = crate::project::load_motifs(&spec, &fixtures).unwrap();
+    assert_eq!(library.image("ramp.jpg").unwrap().width(), 16);
+    // A file that is not an image names itself and keeps the cause.
+    let table =
+        "sites = { distribution = \"uniform\", count = 5, image = \"motifs/broken.svg\" }\n";
+    let spec = SceneSpec::parse(&text(table), Format::Toml).unwrap();
+    let e = crate::project::load_motifs(&spec, &fixtures).unwrap_err();
+    assert!(
+        e.to_string().contains("broken.svg") && e.to_string().contains("not a PNG or JPEG"),
+        "{e}"
+    );
+    assert!(std::error::Error::source(&e).is_some());
 }
