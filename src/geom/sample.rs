@@ -699,7 +699,19 @@ impl<'a> Sampler<'a> {
             let (p, r) = self.active[a];
             let mut placed = false;
             for _ in 0..CANDIDATES {
-                let c = p + annulus(r, rng.next_u64(), &self.directions);
+                let step = annulus(r, rng.next_u64(), &self.directions);
+                let mut c = p + step;
+                // Where the radius grows faster than the annulus reaches
+                // (a white margin beside a dark shape), a candidate at
+                // p's own distance is always too close to p for its own
+                // radius, and the front would stop there: take the step at
+                // the candidate's scale instead.
+                if self.r_min != self.r_max {
+                    let rc = self.radius_at(c)?;
+                    if rc > r {
+                        c = p + step * (rc / r);
+                    }
+                }
                 if self.try_place(c, None)? {
                     placed = true;
                     break;
@@ -1122,6 +1134,30 @@ mod tests {
                 .is_some_and(|(i, d2)| d2.sqrt() < clamped(points[i as usize]).max(rp))
         });
         assert!(closer_than_larger);
+    }
+
+    #[test]
+    fn poisson_disk_grows_across_a_jump_in_radius() {
+        // Radius 1 on the left half, 8 on the right: more than twice the
+        // annulus, yet the right half is covered, sparsely. Seeded on the
+        // left (the only dense part), so the front has to cross.
+        let square = rect(0.0, 0.0, 100.0, 100.0);
+        let radius = |p: Point| if p.x < 50.0 { 1.0 } else { 8.0 };
+        for seed in 0..3 {
+            let points =
+                poisson_disk(&square, &radius, 1.0..=8.0, &mut stream(seed), 100_000).unwrap();
+            let right = points.iter().filter(|p| p.x > 58.0).count();
+            // A 42 × 100 mm strip at radius 8: about 0.63 × 4200 / 64 ≈ 41.
+            assert!(right > 25, "seed {seed}: {right} points on the right");
+            // And no gap wider than twice the radius there.
+            for x in (60..100).step_by(4) {
+                for y in (2..100).step_by(4) {
+                    let probe = Point::new(x as f64, y as f64);
+                    let near = points.iter().any(|p| p.distance(probe) < 16.0);
+                    assert!(near, "seed {seed}: gap at {probe:?}");
+                }
+            }
+        }
     }
 
     #[test]
