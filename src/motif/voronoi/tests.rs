@@ -316,7 +316,11 @@ fn an_svg_outline_is_a_region_with_its_inner_shapes_as_holes() {
         .map(|d| d.bounding_box().center())
         .collect();
     // About 0.63 sites per spacing² over 100² − 40² mm²: 212.
-    assert!(sites.len() > 180 && sites.len() < 260, "{} sites", sites.len());
+    assert!(
+        sites.len() > 180 && sites.len() < 260,
+        "{} sites",
+        sites.len()
+    );
     for p in sites {
         let inside = |lo: f64, hi: f64| p.x > lo && p.x < hi && p.y > lo && p.y < hi;
         assert!(inside(10.0, 110.0) && !inside(40.0, 80.0), "{p:?}");
