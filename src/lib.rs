@@ -83,7 +83,8 @@ pub use error::{Cause, Error, LineCol, Result};
 pub use input::{import_svg, ImportOptions, Imported};
 pub use output::{render_png, to_svg, SvgOptions};
 pub use project::{
-    build_scene, load_motifs, plot_scene, read_svg, render, PlotFormat, PlotJob, Plotted, Rendered,
+    build_scene, fill_scene, load_motifs, plot_scene, read_svg, render, FillJob, FillPattern,
+    Filled, PlotFormat, PlotJob, Plotted, Rendered,
 };
 pub use rng::{RandomStream, Seed};
 pub use scene::{

@@ -1,4 +1,6 @@
-//! The facade: scene description → scene → SVG / PNG / path dump.
+//! The facade: scene description → scene → SVG / PNG / path dump; and any
+//! SVG through the plot stages ([`plot_scene`]) or filled with a pattern
+//! ([`fill_scene`]).
 //!
 //! This is the one place that knows the order of the stages; the CLI calls
 //! only these functions. It is also where user motifs are read from their
@@ -18,6 +20,10 @@ use crate::scene::{Color, Group, Layer, Pen, Scene};
 use crate::spec::{LayerSpec, MotifRef, ValidSpec};
 
 pub use crate::motif::Progress;
+
+mod fill;
+
+pub use fill::{fill_scene, FillJob, FillPattern, Filled};
 
 /// Every user file a description names, in order of first appearance,
 /// without repeats: user motifs (`{ svg = "…" }`) and the SVG files of

@@ -8,6 +8,7 @@
 mod cli;
 mod compat;
 mod determinism;
+mod fill_cli;
 mod golden;
 mod kimono;
 mod plot_cli;

@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+mod fill;
 mod plot;
 
 use moyo::output::write_atomic;
@@ -39,6 +40,12 @@ enum Command {
     Plot(plot::PlotArgs),
     /// Path count, pen-down and pen-up length and plot time of an SVG.
     Stats(plot::StatsArgs),
+    /// Fill the closed shapes of any SVG with a Voronoi-family pattern.
+    ///
+    /// Shapes inside shapes are holes; open strokes fill nothing. The
+    /// pattern goes on a layer and pen of its own; the input's layers and
+    /// pens are kept as they are.
+    Fill(fill::FillArgs),
     /// Print a template's scene description to start a design from.
     New {
         /// Template name (see `moyo templates`).
@@ -100,6 +107,7 @@ pub(crate) fn run() -> ExitCode {
         Command::Templates => list_templates(),
         Command::Plot(args) => plot::plot(&args),
         Command::Stats(args) => plot::stats(&args),
+        Command::Fill(args) => fill::fill(&args),
         Command::New { name, output } => new(&name, output.as_deref()),
     };
     match result {

@@ -230,7 +230,7 @@ pub(crate) struct StatsArgs {
 }
 
 /// Reads the SVG at `path`, telling what its import left out.
-fn load_svg(path: &Path, options: &ImportOptions) -> Result<Imported, CliError> {
+pub(crate) fn load_svg(path: &Path, options: &ImportOptions) -> Result<Imported, CliError> {
     let imported = project::read_svg(path, options)?;
     for w in &imported.warnings {
         eprintln!("warning: {}: {w}", path.display());

@@ -1,0 +1,144 @@
+//! `moyo fill`: a Voronoi-family pattern inside the closed shapes of any
+//! SVG, on a pen of its own.
+
+use std::path::{Path, PathBuf};
+
+use clap::{Args, ValueEnum};
+
+use super::plot::load_svg;
+use super::{warn_outside_page, CliError};
+use moyo::input::ImportOptions;
+use moyo::output::write_atomic;
+use moyo::project::{self, FillJob, FillPattern};
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum PatternArg {
+    /// The cells: each edge between two cells once, and the outline.
+    Voronoi,
+    /// The Delaunay edges between neighbouring sites, in long strokes.
+    Delaunay,
+    /// A dot at each site (--dot), relaxed 10 times by default.
+    Stipple,
+    /// One pen-down line through every site, relaxed 10 times by default.
+    Tour,
+    /// Each cell shrunk and rounded, a closed shape each: stained glass.
+    Glass,
+}
+
+impl PatternArg {
+    fn pattern(self) -> FillPattern {
+        match self {
+            PatternArg::Voronoi => FillPattern::Voronoi,
+            PatternArg::Delaunay => FillPattern::Delaunay,
+            PatternArg::Stipple => FillPattern::Stipple,
+            PatternArg::Tour => FillPattern::Tour,
+            PatternArg::Glass => FillPattern::Glass,
+        }
+    }
+}
+
+#[derive(Args)]
+pub(crate) struct FillArgs {
+    /// The SVG whose closed shapes are filled; shapes inside shapes are
+    /// holes, open strokes are kept but fill nothing.
+    input: PathBuf,
+    /// Output SVG: the input's layers as they were, plus the fill's.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// What the fill draws.
+    #[arg(long, value_enum, default_value = "voronoi")]
+    pattern: PatternArg,
+    /// Seed of the sites (0 – 9223372036854775807).
+    #[arg(long, default_value_t = FillJob::DEFAULT.seed)]
+    seed: u64,
+    /// Poisson-disk sites this far apart, mm (0.1–10000; default 5).
+    #[arg(long, value_name = "MM", conflicts_with = "points")]
+    spacing: Option<f64>,
+    /// This many sites spread uniformly at random instead (1–1000000).
+    #[arg(long, value_name = "N")]
+    points: Option<u32>,
+    /// Lloyd relaxation steps, evening out the sites (0–200; default 10
+    /// for stipple and tour, 0 otherwise).
+    #[arg(long, value_name = "N")]
+    relax: Option<u32>,
+    /// Pen of the fill (1–999); default the smallest number the input
+    /// does not use.
+    #[arg(long, value_name = "N")]
+    pen: Option<u32>,
+    /// Stipple: radius of the dots, mm (0.05–50; default 0.3).
+    #[arg(long, value_name = "MM")]
+    dot: Option<f64>,
+
+    /// Decimals in the SVG (0–8).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
+    precision: u8,
+    /// Also write a PNG preview, in colour.
+    #[arg(long, help_heading = "Output")]
+    png: Option<PathBuf>,
+    /// Resolution of the PNG preview (1–2400).
+    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
+    dpi: f64,
+}
+
+impl FillArgs {
+    /// What `moyo fill` asks of the library.
+    fn job(&self) -> FillJob {
+        let mut job = FillJob::new(self.pattern.pattern()).with_seed(self.seed);
+        job.spacing = self.spacing;
+        job.points = self.points;
+        job.relax = self.relax;
+        job.pen = self.pen;
+        job.dot = self.dot;
+        job
+    }
+}
+
+/// The library names a bad option by its field and the drawing `input`;
+/// here they are the command's option and the input file.
+fn on_the_command_line(e: moyo::Error, input: &Path) -> CliError {
+    const OPTIONS: [&str; 6] = ["seed", "spacing", "points", "relax", "pen", "dot"];
+    CliError::Message(match e {
+        moyo::Error::Invalid { field, message, .. } if field == "input" => {
+            format!("{}: {message}", input.display())
+        }
+        moyo::Error::Invalid { field, message, .. } if OPTIONS.contains(&field.as_str()) => {
+            format!("--{field}: {message}")
+        }
+        e => e.to_string(),
+    })
+}
+
+/// `moyo fill`.
+pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
+    let imported = load_svg(&args.input, &ImportOptions::DEFAULT)?;
+    // Everything is computed before anything is written.
+    let filled = project::fill_scene(imported.scene, &args.job())
+        .map_err(|e| on_the_command_line(e, &args.input))?;
+    let svg = filled.svg(args.precision);
+    let png = match &args.png {
+        Some(_) => Some(filled.png(args.dpi)?),
+        None => None,
+    };
+    write_atomic(&args.output, svg.as_bytes())?;
+    if let (Some(path), Some(bytes)) = (&args.png, &png) {
+        write_atomic(path, bytes)?;
+    }
+    let all = filled.scene.stats();
+    eprintln!(
+        "wrote {}{} ({} paths, {:.0} mm pen-down; the {} fill: {} paths, {:.0} mm, on {} pen {})",
+        args.output.display(),
+        args.png
+            .as_ref()
+            .map(|p| format!(" and {}", p.display()))
+            .unwrap_or_default(),
+        all.paths,
+        all.pen_down_mm,
+        args.job().pattern.name(),
+        filled.fill.paths,
+        filled.fill.pen_down_mm,
+        if filled.new_pen { "new" } else { "the input's" },
+        filled.pen,
+    );
+    warn_outside_page(&filled.scene);
+    Ok(())
+}

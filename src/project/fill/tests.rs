@@ -1,0 +1,315 @@
+use kurbo::{Affine, PathEl, Point, Rect, Shape};
+
+use super::*;
+use crate::input::{import_svg, ImportOptions};
+use crate::output::path_dump;
+use crate::scene::Style;
+
+/// A frame — a square from 10 to 90 mm with a square hole from 35 to 65
+/// mm, two separate shapes — and one open line right across it.
+const FRAME: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+    <rect id="outer" x="10" y="10" width="80" height="80" stroke="#000" fill="none"/>
+    <rect id="hole" x="35" y="35" width="30" height="30" stroke="#000" fill="none"/>
+    <path id="line" d="M 0 50 L 100 50" stroke="#000" fill="none"/>
+</svg>"##;
+
+fn frame() -> Scene {
+    import_svg(FRAME, &ImportOptions::DEFAULT).unwrap().scene
+}
+
+/// The points a layer draws, its curves flattened to 0.01 mm.
+fn points(layer: &Layer) -> Vec<Point> {
+    let mut out = Vec::new();
+    layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+        kurbo::flatten(t * p.path.clone(), 0.01, |el| match el {
+            PathEl::MoveTo(q) | PathEl::LineTo(q) => out.push(q),
+            _ => {}
+        });
+    });
+    out
+}
+
+/// The points of every segment `step` mm apart along the layer's lines
+/// (their ends included).
+fn along(layer: &Layer, step: f64) -> Vec<Point> {
+    let mut out = Vec::new();
+    let mut at: Option<Point> = None;
+    layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+        kurbo::flatten(t * p.path.clone(), 0.01, |el| match el {
+            PathEl::MoveTo(q) => {
+                out.push(q);
+                at = Some(q);
+            }
+            PathEl::LineTo(q) => {
+                let from = at.unwrap_or(q);
+                let n = (from.distance(q) / step).ceil().max(1.0) as usize;
+                out.extend((1..=n).map(|k| from.lerp(q, k as f64 / n as f64)));
+                at = Some(q);
+            }
+            _ => {}
+        });
+    });
+    out
+}
+
+fn fill_layer(filled: &Filled) -> &Layer {
+    let layer = filled.scene.layers.last().unwrap();
+    assert_eq!(layer.id, filled.layer);
+    layer
+}
+
+#[test]
+fn every_pattern_fills_the_frame_and_leaves_its_hole_empty() {
+    let drawing = frame();
+    assert_eq!(drawing.pens.len(), 1);
+    for pattern in FillPattern::ALL {
+        let job = FillJob::new(pattern).with_spacing(4.0);
+        let filled = fill_scene(drawing.clone(), &job).unwrap();
+        let layer = fill_layer(&filled);
+        assert_eq!(layer.pen, 2, "{pattern:?}");
+        assert_eq!((filled.pen, filled.new_pen), (2, true));
+        let pen = filled.scene.pen(2).unwrap();
+        assert_ne!(pen.color, drawing.pens[0].color);
+        assert_eq!(filled.scene.pens.len(), 2);
+        assert_eq!(filled.fill.paths, {
+            let mut n = 0;
+            layer
+                .content
+                .visit_paths(Affine::IDENTITY, &mut |_, _| n += 1);
+            n
+        });
+        // The tour's straight steps between sites may cross the hole;
+        // every other pattern keeps its lines out of it. Dots reach out
+        // of their site by their radius. (The import computes in f32:
+        // the outline is known to a few µm.)
+        let (pts, slack) = match pattern {
+            FillPattern::Tour => (points(layer), 1e-4),
+            FillPattern::Stipple => (along(layer, 0.2), 0.3 + 1e-4),
+            _ => (along(layer, 0.2), 1e-4),
+        };
+        assert!(pts.len() > 200, "{pattern:?}: {} points", pts.len());
+        let outer = Rect::new(10.0, 10.0, 90.0, 90.0).inflate(slack, slack);
+        let hole = Rect::new(35.0, 35.0, 65.0, 65.0).inflate(-slack, -slack);
+        for p in &pts {
+            assert!(outer.contains(*p), "{pattern:?}: {p:?} outside the frame");
+            let in_hole = p.x > hole.x0 && p.x < hole.x1 && p.y > hole.y0 && p.y < hole.y1;
+            assert!(!in_hole, "{pattern:?}: {p:?} inside the hole");
+        }
+        // All four sides of the frame are filled (the open line across it
+        // cuts nothing off).
+        for side in [
+            Rect::new(10.0, 10.0, 35.0, 90.0),
+            Rect::new(65.0, 10.0, 90.0, 90.0),
+            Rect::new(10.0, 10.0, 90.0, 35.0),
+            Rect::new(10.0, 65.0, 90.0, 90.0),
+        ] {
+            let n = pts.iter().filter(|p| side.contains(**p)).count();
+            assert!(n > 20, "{pattern:?}: {n} points in {side:?}");
+        }
+    }
+}
+
+#[test]
+fn the_drawing_comes_back_unchanged() {
+    let drawing = frame();
+    let job = FillJob::new(FillPattern::Voronoi).with_spacing(6.0);
+    let filled = fill_scene(drawing.clone(), &job).unwrap();
+    let n = drawing.layers.len();
+    assert_eq!(filled.scene.layers.len(), n + 1);
+    assert_eq!(filled.scene.layers[..n], drawing.layers[..]);
+    assert_eq!(filled.scene.pens[..1], drawing.pens[..]);
+    assert_eq!(filled.scene.page, drawing.page);
+    assert_eq!(filled.scene.description, drawing.description);
+    // Byte for byte: the drawing's lines in the path dump, and its pen's
+    // Inkscape layer in the SVG.
+    let before = path_dump(&drawing, 3);
+    let after = path_dump(&filled.scene, 3);
+    assert!(after.starts_with(&before), "{before}\n----\n{after}");
+    assert!(after.len() > before.len());
+    let svg = to_svg(&drawing, &SvgOptions::DEFAULT);
+    let pen_1 = &svg[svg.find("<g id=\"pen-1\"").unwrap()..svg.rfind("</svg>").unwrap()];
+    let out = filled.svg(SvgOptions::DEFAULT.precision);
+    assert!(out.contains(pen_1), "{out}");
+    assert!(out.contains(r#"<g id="pen-2" inkscape:groupmode="layer" inkscape:label="2 fill""#));
+    // Behind the drawing, in depth.
+    assert!(fill_layer(&filled).depth > drawing.layers[0].depth);
+}
+
+#[test]
+fn the_seed_decides_the_sites() {
+    let job = FillJob::new(FillPattern::Stipple).with_spacing(5.0);
+    let dump = |job: &FillJob| path_dump(&fill_scene(frame(), job).unwrap().scene, 3);
+    assert_eq!(dump(&job), dump(&job));
+    assert_eq!(job.seed, 1);
+    assert_ne!(dump(&job), dump(&job.with_seed(2)));
+    // Every pattern draws from the same sites for one seed: the
+    // stipple's dots sit where the tour turns.
+    let stipple = fill_scene(frame(), &job).unwrap();
+    let tour = fill_scene(frame(), &FillJob::new(FillPattern::Tour).with_spacing(5.0)).unwrap();
+    let mut turns = points(fill_layer(&tour));
+    let dots = fill_layer(&stipple);
+    let mut centres = Vec::new();
+    dots.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+        centres.push((t * p.path.clone()).bounding_box().center());
+    });
+    let key = |p: &Point| ((p.x * 1e3).round() as i64, (p.y * 1e3).round() as i64);
+    turns.sort_by_key(key);
+    centres.sort_by_key(key);
+    assert_eq!(turns.len(), centres.len());
+    for (a, b) in turns.iter().zip(&centres) {
+        assert!(a.distance(*b) < 1e-3, "{a:?} {b:?}");
+    }
+}
+
+#[test]
+fn points_are_sites_spread_uniformly() {
+    let job = FillJob::new(FillPattern::Stipple)
+        .with_points(150)
+        .with_relax(0)
+        .with_dot(0.5);
+    let filled = fill_scene(frame(), &job).unwrap();
+    assert_eq!(filled.fill.paths, 150);
+    let dot = fill_layer(&filled).content.clone();
+    let mut radii = Vec::new();
+    dot.visit_paths(Affine::IDENTITY, &mut |p, _| {
+        radii.push(p.path.bounding_box().width() / 2.0)
+    });
+    assert!(radii.iter().all(|r| (r - 0.5).abs() < 1e-3), "{radii:?}");
+}
+
+fn invalid(drawing: Scene, job: FillJob) -> (String, String) {
+    match fill_scene(drawing, &job) {
+        Err(Error::Invalid { field, message, .. }) => (field, message),
+        other => panic!("{job:?}: {other:?}"),
+    }
+}
+
+#[test]
+fn bad_options_are_named_as_options() {
+    let job = FillJob::DEFAULT;
+    let (field, message) = invalid(frame(), job.with_spacing(4.0).with_points(100));
+    assert_eq!(field, "points");
+    assert!(message.contains("not both"), "{message}");
+    let (field, message) = invalid(frame(), job.with_dot(1.0));
+    assert_eq!(field, "dot");
+    assert!(message.contains("voronoi"), "{message}");
+    for (job, option) in [
+        (job.with_spacing(0.0), "spacing"),
+        (job.with_spacing(f64::NAN), "spacing"),
+        (job.with_points(0), "points"),
+        (job.with_relax(1000), "relax"),
+        (job.with_pen(0), "pen"),
+        (job.with_pen(1000), "pen"),
+        (job.with_seed(u64::MAX), "seed"),
+        (FillJob::new(FillPattern::Stipple).with_dot(0.0), "dot"),
+    ] {
+        let (field, message) = invalid(frame(), job);
+        assert_eq!(field, option, "{job:?}: {message}");
+        assert!(message.starts_with("must be between"), "{message}");
+    }
+    // Too many sites for the family: on the spacing, with the numbers.
+    let big = r##"<svg xmlns="http://www.w3.org/2000/svg" width="1000mm" height="1000mm" viewBox="0 0 1000 1000">
+        <rect width="1000" height="1000" stroke="#000" fill="none"/>
+    </svg>"##;
+    let big = import_svg(big, &ImportOptions::DEFAULT).unwrap().scene;
+    let (field, message) = invalid(big, job.with_spacing(0.1));
+    assert_eq!(field, "spacing");
+    assert!(message.contains("1000000 sites"), "{message}");
+}
+
+#[test]
+fn a_drawing_without_closed_shapes_has_nothing_to_fill() {
+    let open = r##"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+        <path d="M 10 10 L 90 10 L 90 90 L 10 90" stroke="#000" fill="none"/>
+        <g inkscape:groupmode="layer" inkscape:label="%guides" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape">
+          <rect x="10" y="10" width="80" height="80" stroke="#00f" fill="none"/>
+        </g>
+    </svg>"##;
+    let drawing = import_svg(open, &ImportOptions::DEFAULT).unwrap().scene;
+    // The only closed shape is on a layer that is not plotted.
+    assert!(drawing.layers.iter().any(|l| !l.is_plotted()));
+    let (field, message) = invalid(drawing, FillJob::DEFAULT);
+    assert_eq!(field, "input");
+    assert!(
+        message.starts_with("has no closed shape to fill"),
+        "{message}"
+    );
+
+    // Closed shapes that enclose nothing: a dot and a retraced line.
+    let mut content = Group::new("g");
+    let mut flat = BezPath::new();
+    flat.move_to((5.0, 5.0));
+    flat.close_path();
+    flat.move_to((10.0, 10.0));
+    flat.line_to((50.0, 10.0));
+    flat.close_path();
+    content.push_path("flat", flat, Style::default());
+    let page = crate::units::Page::sized(
+        100.0,
+        100.0,
+        crate::units::Orientation::Portrait,
+        crate::units::Margins::uniform(0.0),
+    );
+    let (field, message) = invalid(Scene::one_pen(page, content), FillJob::DEFAULT);
+    assert_eq!(field, "input");
+    assert!(
+        message.starts_with("its closed shapes are no region"),
+        "{message}"
+    );
+}
+
+#[test]
+fn transforms_margins_and_taken_ids_and_pens() {
+    // A square drawn at the origin and moved by its group, on a page with
+    // margins: the fill lies where the square is drawn.
+    let mut square = Group::new("fill");
+    square.transform = Affine::translate((40.0, 20.0));
+    square.push_path(
+        "fill.square",
+        Rect::new(0.0, 0.0, 30.0, 30.0).to_path(0.1),
+        Style::default(),
+    );
+    let mut content = Group::new("l.content");
+    content.push_group(square);
+    let page = crate::units::Page::sized(
+        120.0,
+        80.0,
+        crate::units::Orientation::Landscape,
+        crate::units::Margins::uniform(7.0),
+    );
+    let mut drawing = Scene::one_pen(page, content);
+    drawing.pens.push(Pen {
+        number: 3,
+        name: "red".into(),
+        color: Color::rgb(200, 0, 0),
+        width: 0.5,
+    });
+    let filled = fill_scene(drawing.clone(), &FillJob::new(FillPattern::Glass)).unwrap();
+    // Pen 2 is free; the ids `fill` and `fill.…` are taken.
+    assert_eq!((filled.pen, filled.new_pen), (2, true));
+    let numbers: Vec<u32> = filled.scene.pens.iter().map(|p| p.number).collect();
+    assert_eq!(numbers, [1, 2, 3]);
+    assert_eq!(filled.layer, "fill-2");
+    let pts = points(fill_layer(&filled));
+    assert!(!pts.is_empty());
+    let square = Rect::new(40.0, 20.0, 70.0, 50.0);
+    assert!(pts.iter().all(|p| square.contains(*p)), "{pts:?}");
+    let mut ids = Vec::new();
+    fill_layer(&filled)
+        .content
+        .visit_paths(Affine::IDENTITY, &mut |p, _| ids.push(p.id.clone()));
+    assert!(ids.iter().all(|id| id.starts_with("fill-2.")), "{ids:?}");
+
+    // A pen the drawing has: it keeps its name, colour and width.
+    let filled = fill_scene(drawing.clone(), &FillJob::DEFAULT.with_pen(3)).unwrap();
+    assert_eq!((filled.pen, filled.new_pen), (3, false));
+    assert_eq!(filled.scene.pens, drawing.pens);
+    assert_eq!(fill_layer(&filled).pen, 3);
+}
+
+#[test]
+fn the_preview_is_a_png() {
+    let filled = fill_scene(frame(), &FillJob::new(FillPattern::Delaunay)).unwrap();
+    assert!(filled.png(20.0).unwrap().starts_with(b"\x89PNG"));
+    assert!(filled.preview_svg(2).contains("2 fill"));
+}

@@ -1,0 +1,185 @@
+//! `moyo fill` through the binary: every pattern on a drawing of its own,
+//! the input's layer kept byte for byte beside the fill's new one, the PNG
+//! preview, seeds, and bad input or options failing with `error:` and
+//! leaving no file behind.
+
+use std::fs;
+use std::path::Path;
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+use tempfile::TempDir;
+
+/// A frame (a square with a square hole) and an open line across it.
+const FRAME: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+    <rect x="10" y="10" width="80" height="80" stroke="#000" fill="none"/>
+    <rect x="35" y="35" width="30" height="30" stroke="#000" fill="none"/>
+    <path d="M 0 50 L 100 50" stroke="#000" fill="none"/>
+</svg>"##;
+
+fn moyo(dir: &TempDir) -> Command {
+    let mut cmd = Command::cargo_bin("moyo").expect("the moyo binary is built");
+    cmd.current_dir(dir.path());
+    cmd
+}
+
+/// A directory holding `frame.svg`.
+fn with_frame() -> TempDir {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    fs::write(dir.path().join("frame.svg"), FRAME).unwrap();
+    dir
+}
+
+fn read(dir: &TempDir, name: &str) -> String {
+    fs::read_to_string(dir.path().join(name)).unwrap()
+}
+
+/// The Inkscape layer of pen `n` in an SVG moyo wrote: from its opening
+/// tag to the next pen's (or the end of the document).
+fn pen_layer(svg: &str, n: u32) -> &str {
+    let start = svg
+        .find(&format!("<g id=\"pen-{n}\""))
+        .unwrap_or_else(|| panic!("no pen {n} in {svg}"));
+    let rest = &svg[start..];
+    let end = rest[1..]
+        .find("<g id=\"pen-")
+        .map_or_else(|| rest.rfind("</svg>").unwrap(), |i| i + 1);
+    &rest[..end]
+}
+
+#[test]
+fn every_pattern_adds_a_layer_and_keeps_the_input() {
+    let dir = with_frame();
+    // The input as moyo writes it without filling.
+    moyo(&dir)
+        .args(["plot", "frame.svg", "-o", "plain.svg"])
+        .assert()
+        .success();
+    let plain = read(&dir, "plain.svg");
+    let input_layer = pen_layer(&plain, 1);
+    assert!(input_layer.contains("inkscape:label=\"1"), "{input_layer}");
+    for pattern in ["voronoi", "delaunay", "stipple", "tour", "glass"] {
+        let out = format!("{pattern}.svg");
+        moyo(&dir)
+            .args(["fill", "frame.svg", "-o", &out, "--pattern", pattern])
+            .args(["--spacing", "6"])
+            .assert()
+            .success()
+            .stderr(
+                predicate::str::starts_with(format!("wrote {out} ("))
+                    .and(predicate::str::contains(format!("the {pattern} fill: "))),
+            );
+        let svg = read(&dir, &out);
+        assert!(svg.contains(input_layer), "{pattern}: the input changed");
+        let fill = pen_layer(&svg, 2);
+        assert!(
+            fill.contains("inkscape:groupmode=\"layer\" inkscape:label=\"2 fill\""),
+            "{fill}"
+        );
+        let paths = fill.matches("<path ").count();
+        // One line through all sites; Delaunay edges chained into long
+        // strokes; a path a cell or a site.
+        let least = match pattern {
+            "tour" => 1,
+            "delaunay" => 10,
+            _ => 50,
+        };
+        assert!(paths >= least, "{pattern}: {paths} paths");
+        assert_eq!(svg.matches("inkscape:groupmode=\"layer\"").count(), 2);
+    }
+}
+
+#[test]
+fn the_png_preview_and_the_seed() {
+    let dir = with_frame();
+    let fill = |out: &str, extra: &[&str]| {
+        moyo(&dir)
+            .args(["fill", "frame.svg", "-o", out, "--pattern", "stipple"])
+            .args(extra)
+            .assert()
+            .success();
+        read(&dir, out)
+    };
+    let a = fill("a.svg", &["--png", "a.png", "--dpi", "30"]);
+    let png = fs::read(dir.path().join("a.png")).unwrap();
+    assert!(png.starts_with(b"\x89PNG"));
+    // The default seed is 1; another seed moves the dots.
+    assert_eq!(fill("b.svg", &["--seed", "1"]), a);
+    assert_ne!(fill("c.svg", &["--seed", "2"]), a);
+    // Uniform points, dot size, relaxation and pen are the job's.
+    let d = fill(
+        "d.svg",
+        &[
+            "--points", "40", "--dot", "1.5", "--relax", "0", "--pen", "7",
+        ],
+    );
+    let layer = pen_layer(&d, 7);
+    assert_eq!(layer.matches("<path ").count(), 40);
+    assert!(d.contains("inkscape:label=\"7 fill\""));
+}
+
+#[test]
+fn fill_help_lists_the_patterns() {
+    let dir = with_frame();
+    let out = moyo(&dir)
+        .args(["fill", "--help"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let help = String::from_utf8(out).unwrap();
+    for word in [
+        "voronoi",
+        "delaunay",
+        "stipple",
+        "tour",
+        "glass",
+        "--spacing",
+    ] {
+        assert!(help.contains(word), "{word}: {help}");
+    }
+}
+
+#[test]
+fn bad_input_and_options_fail_and_write_nothing() {
+    let dir = with_frame();
+    fs::write(dir.path().join("text.svg"), "this is not an SVG").unwrap();
+    let open = r##"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+        <path d="M 10 10 L 90 10 L 90 90" stroke="#000" fill="none"/>
+    </svg>"##;
+    fs::write(dir.path().join("open.svg"), open).unwrap();
+    for (args, expected) in [
+        (&["text.svg"][..], "error: text.svg: "),
+        (&["missing.svg"], "error: missing.svg: "),
+        (
+            &["open.svg"],
+            "error: open.svg: has no closed shape to fill",
+        ),
+        (
+            &["frame.svg", "--spacing", "0"],
+            "error: --spacing: must be between 0.1 and 10000, got 0",
+        ),
+        (&["frame.svg", "--points", "0"], "error: --points: "),
+        (&["frame.svg", "--relax", "201"], "error: --relax: "),
+        (&["frame.svg", "--pen", "1000"], "error: --pen: "),
+        (&["frame.svg", "--dot", "1"], "error: --dot: "),
+        (
+            &["frame.svg", "--pattern", "stipple", "--dot", "0"],
+            "error: --dot: ",
+        ),
+        (&["frame.svg", "--spacing", "5", "--points", "9"], "error: "),
+        (&["frame.svg", "--pattern", "plaid"], "error: "),
+    ] {
+        moyo(&dir)
+            .arg("fill")
+            .args(args)
+            .args(["-o", "out.svg", "--png", "out.png"])
+            .assert()
+            .failure()
+            .stderr(predicate::str::starts_with(expected));
+        for file in ["out.svg", "out.png"] {
+            assert!(!Path::new(&dir.path().join(file)).exists(), "{args:?}");
+        }
+    }
+}
