@@ -54,7 +54,9 @@ pub struct VoronoiSpec {
 pub enum Draw {
     /// The cell outlines, clipped to the region; shared edges drawn once.
     Cells,
-    /// The Delaunay edges between neighbouring sites, inside the region.
+    /// The constrained Delaunay triangulation of the sites and the
+    /// region's outline: no edge leaves the region, the triangles reach
+    /// its border.
     Delaunay,
     /// Each cell shrunk by `inset` (and rounded by `round`): stained glass,
     /// cracked earth.

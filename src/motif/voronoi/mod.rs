@@ -9,8 +9,8 @@
 //! - `cells`: the cell network, each edge between two cells drawn once
 //!   (a plotter would draw shared edges twice if every cell were closed),
 //!   the region's outline with it, as few strokes as the cells allow;
-//! - `delaunay`: the Delaunay edges between sites inside the region,
-//!   chained into strokes;
+//! - `delaunay`: the constrained Delaunay triangulation of the sites and
+//!   the region's outline, cut to the region, chained into strokes;
 //! - `inset`: each cell shrunk (and rounded), one closed path a cell, ids
 //!   `inset-<site>` so `[[adjust]]` can hide one;
 //! - `sites`: a small circle at each site, ids `site-<i>`;
@@ -18,6 +18,8 @@
 
 mod network;
 mod region;
+
+use std::collections::BTreeMap;
 
 use kurbo::{BezPath, Circle, Point, Shape};
 
@@ -28,7 +30,8 @@ use crate::geom::density::Density;
 use crate::geom::offset::offset;
 use crate::geom::region::Region;
 use crate::geom::voronoi::{
-    delaunay_edges, lloyd_step, weighted_lloyd_step, CellOptions, Diagram, Domain,
+    constrained_delaunay, delaunay_edges, lloyd_step, weighted_lloyd_step, CellOptions, Diagram,
+    Domain,
 };
 use crate::geom::{sample, tour, TOLERANCE};
 use crate::rng::RandomStream;
@@ -74,11 +77,7 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
     } else {
         None
     };
-    let edges = if spec
-        .draw
-        .iter()
-        .any(|d| matches!(d, Draw::Delaunay | Draw::Tour))
-    {
+    let edges = if spec.draw.contains(&Draw::Tour) {
         delaunay_edges(&sites, &domain, &options)?
     } else {
         Vec::new()
@@ -91,7 +90,7 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
                 let diagram = diagram.as_ref().expect("made for cells");
                 numbered(&id, "stroke", network::cell_network(diagram))
             }
-            Draw::Delaunay => numbered(&id, "stroke", network::chains(&sites, &edges)),
+            Draw::Delaunay => numbered(&id, "stroke", triangulation(&sites, &region, &options)?),
             Draw::Inset => inset(spec, diagram.as_ref().expect("made for inset"), &id)?,
             Draw::Sites => sites
                 .iter()
@@ -261,6 +260,41 @@ fn inset(spec: &VoronoiSpec, diagram: &Diagram, id: &str) -> Result<Vec<(String,
         }
     }
     Ok(out)
+}
+
+/// How closely the triangulation's outline follows a curved region (mm):
+/// its vertices are triangle corners, so a fine flattening would fan
+/// slivers along every curve; half a millimetre keeps triangles whole and
+/// the outline within a pen's width of the curve.
+const TRIANGULATION_OUTLINE: f64 = 0.5;
+
+/// The constrained Delaunay triangulation of the sites and the region's
+/// outline (flattened within [`TRIANGULATION_OUTLINE`]), cut to the
+/// region: every edge once, chained into strokes. Inside a bay or around a
+/// hole no edge crosses out of the region, and the outline closes the
+/// triangles at the edge (a low-poly look to the very border).
+fn triangulation(sites: &[Point], region: &Region, options: &CellOptions) -> Result<Vec<BezPath>> {
+    let coarse = Domain::new(region, TRIANGULATION_OUTLINE)?;
+    let cdt = constrained_delaunay(sites, &coarse, options)?;
+    // Outline vertices join the sites as points; lines name them by
+    // their exact coordinates, which the triangulation gives back as put in.
+    let key = |p: Point| (p.x.to_bits(), p.y.to_bits());
+    let mut points = sites.to_vec();
+    let mut index: BTreeMap<(u64, u64), usize> = BTreeMap::new();
+    for (i, p) in sites.iter().enumerate() {
+        index.entry(key(*p)).or_insert(i);
+    }
+    let mut edges = cdt.between_sites.clone();
+    for line in cdt.to_outline.iter().chain(&cdt.outline) {
+        let [a, b] = [line.p0, line.p1].map(|p| {
+            *index.entry(key(p)).or_insert_with(|| {
+                points.push(p);
+                points.len() - 1
+            })
+        });
+        edges.push([a.min(b), a.max(b)]);
+    }
+    Ok(network::chains(&points, &edges))
 }
 
 /// One line through every site, 2-opt tried among Delaunay neighbours.
