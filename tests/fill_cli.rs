@@ -170,6 +170,14 @@ fn bad_input_and_options_fail_and_write_nothing() {
         ),
         (&["frame.svg", "--spacing", "5", "--points", "9"], "error: "),
         (&["frame.svg", "--pattern", "plaid"], "error: "),
+        (
+            &["frame.svg", "--image", "text.svg"],
+            "error: text.svg: image: is not a PNG or JPEG image",
+        ),
+        (
+            &["frame.svg", "--image", "missing.png"],
+            "error: missing.png: ",
+        ),
     ] {
         moyo(&dir)
             .arg("fill")

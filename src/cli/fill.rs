@@ -15,7 +15,8 @@ use moyo::project::{self, FillJob, FillPattern};
 pub(crate) enum PatternArg {
     /// The cells: each edge between two cells once, and the outline.
     Voronoi,
-    /// The Delaunay edges between neighbouring sites, in long strokes.
+    /// The Delaunay triangulation of the sites and the outline, in long
+    /// strokes.
     Delaunay,
     /// A dot at each site (--dot), relaxed 10 times by default.
     Stipple,
@@ -68,6 +69,11 @@ pub(crate) struct FillArgs {
     /// Stipple: radius of the dots, mm (0.05–50; default 0.3).
     #[arg(long, value_name = "MM")]
     dot: Option<f64>,
+    /// A PNG or JPEG whose dark parts get more sites (and weigh more when
+    /// relaxing: weighted Voronoi stippling), fitted to the shapes'
+    /// bounding box, aspect kept, centred.
+    #[arg(long, value_name = "FILE")]
+    image: Option<PathBuf>,
 
     /// Decimals in the SVG (0–8).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
@@ -81,15 +87,21 @@ pub(crate) struct FillArgs {
 }
 
 impl FillArgs {
-    /// What `moyo fill` asks of the library.
-    fn job(&self) -> FillJob {
+    /// What `moyo fill` asks of the library (reads the density image).
+    fn job(&self) -> Result<FillJob, CliError> {
         let mut job = FillJob::new(self.pattern.pattern()).with_seed(self.seed);
         job.spacing = self.spacing;
         job.points = self.points;
         job.relax = self.relax;
         job.pen = self.pen;
         job.dot = self.dot;
-        job
+        if let Some(path) = &self.image {
+            let fail =
+                |e: &dyn std::fmt::Display| CliError::Message(format!("{}: {e}", path.display()));
+            let bytes = std::fs::read(path).map_err(|e| fail(&e))?;
+            job = job.with_image(moyo::input::decode_image(&bytes).map_err(|e| fail(&e))?);
+        }
+        Ok(job)
     }
 }
 
@@ -111,8 +123,9 @@ fn on_the_command_line(e: moyo::Error, input: &Path) -> CliError {
 /// `moyo fill`.
 pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
     let imported = load_svg(&args.input, &ImportOptions::DEFAULT)?;
+    let job = args.job()?;
     // Everything is computed before anything is written.
-    let filled = project::fill_scene(imported.scene, &args.job())
+    let filled = project::fill_scene(imported.scene, &job)
         .map_err(|e| on_the_command_line(e, &args.input))?;
     let svg = filled.svg(args.precision);
     let png = match &args.png {
@@ -133,7 +146,7 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
             .unwrap_or_default(),
         all.paths,
         all.pen_down_mm,
-        args.job().pattern.name(),
+        job.pattern.name(),
         filled.fill.paths,
         filled.fill.pen_down_mm,
         if filled.new_pen { "new" } else { "the input's" },

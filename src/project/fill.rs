@@ -14,6 +14,7 @@ use kurbo::{Affine, BezPath};
 
 use super::build_scene_with_progress;
 use crate::error::{Error, Result};
+use crate::geom::density::GreyImage;
 use crate::geom::path_length;
 use crate::geom::subpath::subpaths;
 use crate::motif::Library;
@@ -94,7 +95,7 @@ impl FillPattern {
 /// Errors name the option at fault by these fields' names (`spacing`,
 /// `points`, `relax`, `pen`, `dot`, `seed`), and the drawing as `input`.
 #[non_exhaustive]
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FillJob {
     /// The pattern. Default [`FillPattern::Voronoi`].
     pub pattern: FillPattern,
@@ -115,6 +116,10 @@ pub struct FillJob {
     /// With [`FillPattern::Stipple`] only: the radius of the dots, mm
     /// (0.05–50, default 0.3).
     pub dot: Option<f64>,
+    /// Density: dark parts of the image get more sites and weigh more in
+    /// relaxation (weighted Voronoi stippling), the image fitted to the
+    /// shapes' bounding box, aspect kept, centred. Default none.
+    pub image: Option<GreyImage>,
 }
 
 impl FillJob {
@@ -131,7 +136,14 @@ impl FillJob {
         relax: None,
         pen: None,
         dot: None,
+        image: None,
     };
+
+    /// This job with sites denser where `image` is dark.
+    pub fn with_image(mut self, image: GreyImage) -> FillJob {
+        self.image = Some(image);
+        self
+    }
 
     /// The default job drawing `pattern`.
     pub const fn new(pattern: FillPattern) -> FillJob {
@@ -227,6 +239,9 @@ impl Filled {
 /// description's `region.svg`.
 const INPUT: &str = "input";
 
+/// The name the density image goes by in the fill's description.
+const IMAGE: &str = "image";
+
 /// The field path of the one table of the description.
 const TABLE: &str = "layers[0].voronoi[0]";
 
@@ -295,6 +310,9 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     }
     let mut library = Library::new();
     library.add_paths(INPUT, outline);
+    if let Some(image) = &job.image {
+        library.add_image(IMAGE, image.clone());
+    }
     let built = build_scene_with_progress(&spec, &library, &mut |_| {}).map_err(by_option)?;
     let mut layers = built.layers;
     let mut layer = layers.pop().ok_or_else(|| Error::Geometry {
@@ -344,6 +362,10 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
             spacing: Some(job.spacing.unwrap_or(FillJob::DEFAULT_SPACING)),
             ..SitesSpec::default()
         },
+    };
+    let sites = SitesSpec {
+        image: job.image.as_ref().map(|_| IMAGE.to_string()),
+        ..sites
     };
     let glass = job.pattern == FillPattern::Glass;
     let table = VoronoiSpec {

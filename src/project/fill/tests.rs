@@ -141,7 +141,7 @@ fn the_seed_decides_the_sites() {
     let dump = |job: &FillJob| path_dump(&fill_scene(frame(), job).unwrap().scene, 3);
     assert_eq!(dump(&job), dump(&job));
     assert_eq!(job.seed, 1);
-    assert_ne!(dump(&job), dump(&job.with_seed(2)));
+    assert_ne!(dump(&job), dump(&job.clone().with_seed(2)));
     // Every pattern draws from the same sites for one seed: the
     // stipple's dots sit where the tour turns.
     let stipple = fill_scene(frame(), &job).unwrap();
@@ -187,23 +187,23 @@ fn invalid(drawing: Scene, job: FillJob) -> (String, String) {
 #[test]
 fn bad_options_are_named_as_options() {
     let job = FillJob::DEFAULT;
-    let (field, message) = invalid(frame(), job.with_spacing(4.0).with_points(100));
+    let (field, message) = invalid(frame(), job.clone().with_spacing(4.0).with_points(100));
     assert_eq!(field, "points");
     assert!(message.contains("not both"), "{message}");
-    let (field, message) = invalid(frame(), job.with_dot(1.0));
+    let (field, message) = invalid(frame(), job.clone().with_dot(1.0));
     assert_eq!(field, "dot");
     assert!(message.contains("voronoi"), "{message}");
     for (job, option) in [
-        (job.with_spacing(0.0), "spacing"),
-        (job.with_spacing(f64::NAN), "spacing"),
-        (job.with_points(0), "points"),
-        (job.with_relax(1000), "relax"),
-        (job.with_pen(0), "pen"),
-        (job.with_pen(1000), "pen"),
-        (job.with_seed(u64::MAX), "seed"),
+        (job.clone().with_spacing(0.0), "spacing"),
+        (job.clone().with_spacing(f64::NAN), "spacing"),
+        (job.clone().with_points(0), "points"),
+        (job.clone().with_relax(1000), "relax"),
+        (job.clone().with_pen(0), "pen"),
+        (job.clone().with_pen(1000), "pen"),
+        (job.clone().with_seed(u64::MAX), "seed"),
         (FillJob::new(FillPattern::Stipple).with_dot(0.0), "dot"),
     ] {
-        let (field, message) = invalid(frame(), job);
+        let (field, message) = invalid(frame(), job.clone());
         assert_eq!(field, option, "{job:?}: {message}");
         assert!(message.starts_with("must be between"), "{message}");
     }
@@ -212,7 +212,7 @@ fn bad_options_are_named_as_options() {
         <rect width="1000" height="1000" stroke="#000" fill="none"/>
     </svg>"##;
     let big = import_svg(big, &ImportOptions::DEFAULT).unwrap().scene;
-    let (field, message) = invalid(big, job.with_spacing(0.1));
+    let (field, message) = invalid(big, job.clone().with_spacing(0.1));
     assert_eq!(field, "spacing");
     assert!(message.contains("1000000 sites"), "{message}");
 }
@@ -312,4 +312,33 @@ fn the_preview_is_a_png() {
     let filled = fill_scene(frame(), &FillJob::new(FillPattern::Delaunay)).unwrap();
     assert!(filled.png(20.0).unwrap().starts_with(b"\x89PNG"));
     assert!(filled.preview_svg(2).contains("2 fill"));
+}
+
+#[test]
+fn an_image_makes_its_dark_side_denser() {
+    // Dark on the right, white on the left; fitted to the frame's 80 mm
+    // square (the shapes' bounding box).
+    let (w, h) = (40, 40);
+    let darkness = (0..h)
+        .flat_map(|_| (0..w).map(move |x| if x >= w / 2 { 0.9 } else { 0.1 }))
+        .collect();
+    let image = GreyImage::new(w, h, darkness).unwrap();
+    let job = FillJob::new(FillPattern::Stipple)
+        .with_points(400)
+        .with_relax(5)
+        .with_image(image);
+    let filled = fill_scene(frame(), &job).unwrap();
+    let mut centres = Vec::new();
+    fill_layer(&filled)
+        .content
+        .visit_paths(Affine::IDENTITY, &mut |p, t| {
+            centres.push((t * p.path.clone()).bounding_box().center());
+        });
+    assert_eq!(centres.len(), 400);
+    let right = centres.iter().filter(|p| p.x > 50.0).count();
+    assert!(right > 3 * (400 - right), "{right} of 400 on the dark side");
+    // And none in the hole.
+    assert!(!centres
+        .iter()
+        .any(|p| p.x > 35.1 && p.x < 64.9 && p.y > 35.1 && p.y < 64.9));
 }
