@@ -19,7 +19,7 @@ use crate::plot;
 use crate::scene::{Color, Group, Layer, Pen, Scene};
 use crate::spec::{LayerSpec, MotifRef, ValidSpec};
 
-pub use crate::motif::Progress;
+pub use crate::motif::{Note, Progress};
 
 mod fill;
 
@@ -171,10 +171,17 @@ pub fn build_scene_with_progress(
     library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Scene> {
-    build(spec, library, progress).map_err(|e| spec.locate(e))
+    build(spec, library, progress)
+        .map(|(scene, _)| scene)
+        .map_err(|e| spec.locate(e))
 }
 
-fn build(spec: &ValidSpec, library: &Library, progress: &mut dyn FnMut(Progress)) -> Result<Scene> {
+/// The scene and the generators' notes.
+fn build(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(Scene, Vec<Note>)> {
     let flow = Flow::new(&spec.lines);
     let ids = layer_ids(spec);
     let mut cx = Context::new(spec, library, &flow, progress);
@@ -194,7 +201,7 @@ fn build(spec: &ValidSpec, library: &Library, progress: &mut dyn FnMut(Progress)
             content,
         });
     }
-    cx.finish()?;
+    let notes = cx.finish()?;
     let mut pens: Vec<Pen> = spec
         .pens
         .iter()
@@ -206,12 +213,13 @@ fn build(spec: &ValidSpec, library: &Library, progress: &mut dyn FnMut(Progress)
         })
         .collect();
     pens.sort_by_key(|p| p.number);
-    Ok(Scene {
+    let scene = Scene {
         page: spec.page(),
         pens,
         layers,
         description: Some(spec.to_toml()),
-    })
+    };
+    Ok((scene, notes))
 }
 
 /// Stable, unique, SVG-safe ids for the layers, made from their names.
@@ -256,6 +264,9 @@ pub struct Rendered {
     /// The SVG to plot: only what pens draw (see [`crate::output::to_svg`]);
     /// the colour preview is [`Rendered::preview_svg`].
     pub svg: String,
+    /// What the generators noted (how relaxations converged…), in scene
+    /// order.
+    pub notes: Vec<Note>,
     /// The options `svg` was written with.
     options: SvgOptions,
 }
@@ -272,15 +283,14 @@ pub fn render_with_progress(
     library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Rendered> {
-    let scene = plot::run(
-        build_scene_with_progress(spec, library, progress)?,
-        &spec.plot,
-    )?;
+    let (scene, notes) = build(spec, library, progress).map_err(|e| spec.locate(e))?;
+    let scene = plot::run(scene, &spec.plot)?;
     let options = svg_options(spec);
     let svg = to_svg(&scene, &options);
     Ok(Rendered {
         scene,
         svg,
+        notes,
         options,
     })
 }

@@ -161,7 +161,11 @@ fn bad_input_and_options_fail_and_write_nothing() {
             "error: --spacing: must be between 0.1 and 10000, got 0",
         ),
         (&["frame.svg", "--points", "0"], "error: --points: "),
-        (&["frame.svg", "--relax", "201"], "error: --relax: "),
+        (&["frame.svg", "--relax", "1001"], "error: --relax: "),
+        (
+            &["frame.svg", "--density", "1 +"],
+            "error: --density: is not a formula",
+        ),
         (&["frame.svg", "--pen", "1000"], "error: --pen: "),
         (&["frame.svg", "--dot", "1"], "error: --dot: "),
         (

@@ -58,10 +58,24 @@ pub(crate) struct FillArgs {
     /// This many sites spread uniformly at random instead (1–1000000).
     #[arg(long, value_name = "N")]
     points: Option<u32>,
-    /// Lloyd relaxation steps, evening out the sites (0–200; default 10
-    /// for stipple and tour, 0 otherwise).
+    /// Relaxation steps, at most, evening out the sites (0–1000; default
+    /// 10 for stipple and tour, 0 otherwise).
     #[arg(long, value_name = "N")]
     relax: Option<u32>,
+    /// Relax by weighted Linde-Buzo-Gray: sites split and go until each
+    /// holds one site's worth of density, --spacing apart where it is 1
+    /// (the count follows the image; needs --relax).
+    #[arg(long)]
+    lbg: bool,
+    /// Stop relaxing once a step moves the sites less than this on
+    /// average, mm (0.00001–100).
+    #[arg(long, value_name = "MM")]
+    converge: Option<f64>,
+    /// Density as a formula of the position: x, y in mm, u, v 0–1 across
+    /// the shapes' bounding box, clamped to 0–1 (e.g. "1 - v"); times the
+    /// image's when both are given.
+    #[arg(long, value_name = "FORMULA", allow_hyphen_values = true)]
+    density: Option<String>,
     /// Pen of the fill (1–999); default the smallest number the input
     /// does not use.
     #[arg(long, value_name = "N")]
@@ -93,6 +107,9 @@ impl FillArgs {
         job.spacing = self.spacing;
         job.points = self.points;
         job.relax = self.relax;
+        job.lbg = self.lbg;
+        job.converge = self.converge;
+        job.density = self.density.clone();
         job.pen = self.pen;
         job.dot = self.dot;
         if let Some(path) = &self.image {
@@ -108,7 +125,9 @@ impl FillArgs {
 /// The library names a bad option by its field and the drawing `input`;
 /// here they are the command's option and the input file.
 fn on_the_command_line(e: moyo::Error, input: &Path) -> CliError {
-    const OPTIONS: [&str; 6] = ["seed", "spacing", "points", "relax", "pen", "dot"];
+    const OPTIONS: [&str; 8] = [
+        "seed", "spacing", "points", "relax", "converge", "density", "pen", "dot",
+    ];
     CliError::Message(match e {
         moyo::Error::Invalid { field, message, .. } if field == "input" => {
             format!("{}: {message}", input.display())

@@ -249,6 +249,9 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
             format!(" and {}", also.join(" and "))
         }
     );
+    for note in &rendered.notes {
+        eprintln!("{}: {}", note.motif, note.text);
+    }
     warn_outside_page(&rendered.scene);
     Ok(())
 }

@@ -1,9 +1,11 @@
-//! Grey images as density: darkness values on a pixel grid, sampled
-//! bilinearly, and laid over a region of the page — fitted to a frame (the
-//! region's bounding box), aspect kept, centred. Dark asks for more
-//! (stipples, sites, cells). Reading image files is
+//! Density over the page, 0–1: how much of something (stipples, sites,
+//! cells) a place asks for. It comes from a grey image — darkness values
+//! on a pixel grid, sampled bilinearly, fitted to a frame (the region's
+//! bounding box), aspect kept, centred; dark asks for more — or from a
+//! [`Formula`] of the position, or both multiplied. Reading image files is
 //! [`crate::input::decode_image`]'s job.
 
+use exmex::{Express, FlatEx};
 use kurbo::{Point, Rect};
 
 use crate::error::{Error, Result};
@@ -85,19 +87,44 @@ impl GreyImage {
     }
 }
 
+/// Density over the page: a fitted image's darkness, a formula's value,
+/// both multiplied, or 1 everywhere.
+#[derive(Debug, Clone)]
+pub struct Density<'a> {
+    frame: Rect,
+    image: Option<Fitted<'a>>,
+    formula: Option<&'a Formula>,
+}
+
 /// An image laid over a rectangle of the page: scaled to fit inside it
 /// with its aspect kept and centred (as a picture in a frame), white
 /// beyond its edges.
 #[derive(Debug, Clone)]
-pub struct Density<'a> {
+struct Fitted<'a> {
     image: &'a GreyImage,
     origin: Point,
     px_per_mm: f64,
 }
 
 impl<'a> Density<'a> {
+    /// Density 1 everywhere; `frame` (page mm) is what images are fitted
+    /// to and what a formula's `u`, `v` span.
+    pub fn new(frame: Rect) -> Density<'a> {
+        Density {
+            frame,
+            image: None,
+            formula: None,
+        }
+    }
+
     /// `image` fitted to `frame` (page mm).
     pub fn fitted(image: &'a GreyImage, frame: Rect) -> Density<'a> {
+        Density::new(frame).with_image(image)
+    }
+
+    /// This density times the darkness of `image`, fitted to the frame.
+    pub fn with_image(mut self, image: &'a GreyImage) -> Density<'a> {
+        let frame = self.frame;
         let (w, h) = (image.width as f64, image.height as f64);
         let mm_per_px = (frame.width() / w).min(frame.height() / h);
         let size = (w * mm_per_px, h * mm_per_px);
@@ -105,17 +132,124 @@ impl<'a> Density<'a> {
             frame.center().x - size.0 / 2.0,
             frame.center().y - size.1 / 2.0,
         );
-        Density {
+        self.image = Some(Fitted {
             image,
             origin,
             px_per_mm: 1.0 / mm_per_px,
-        }
+        });
+        self
     }
 
-    /// Darkness at a page point (0 white – 1 black).
+    /// This density times the value of `formula`.
+    pub fn with_formula(mut self, formula: &'a Formula) -> Density<'a> {
+        self.formula = Some(formula);
+        self
+    }
+
+    /// The size of the image's pixels on the page (mm), the finest scale
+    /// on which it changes; `None` without an image.
+    pub fn pixel(&self) -> Option<f64> {
+        self.image.as_ref().map(|f| 1.0 / f.px_per_mm)
+    }
+
+    /// Density at a page point (0–1).
     pub fn at(&self, p: Point) -> f64 {
-        let v = (p - self.origin) * self.px_per_mm;
-        self.image.sample(v.x, v.y)
+        let mut d = 1.0;
+        if let Some(f) = &self.image {
+            let v = (p - f.origin) * f.px_per_mm;
+            d *= f.image.sample(v.x, v.y);
+        }
+        if let Some(formula) = self.formula {
+            let r = self.frame;
+            let (u, v) = ((p.x - r.x0) / r.width(), (p.y - r.y0) / r.height());
+            d *= formula.value(p.x, p.y, u, v);
+        }
+        d
+    }
+}
+
+/// A density given as a formula of the position, such as
+/// `"1 - v"` (dark at the top, white at the bottom) or
+/// `"0.5 + 0.5 * sin(x / 10)"` (bands 63 mm apart).
+///
+/// Names: `x`, `y` — the point in mm (as every position in a description,
+/// from the top left inside the margins); `u`, `v` — the same point across
+/// the frame (the region's bounding box), 0 at its left/top, 1 at its
+/// right/bottom. Operators `+ - * / ^`, the functions `sin cos tan asin
+/// acos atan sinh cosh tanh exp ln log2 log10 sqrt cbrt abs signum floor
+/// ceil round trunc fract`, and the constants `PI`/`π`, `TAU`/`τ`, `E`. The
+/// value is clamped to 0–1; where it is not a number it counts as 0.
+#[derive(Debug, Clone)]
+pub struct Formula {
+    text: String,
+    expr: FlatEx<f64>,
+    /// Which of x, y, u, v each of the formula's names is, in the order
+    /// its evaluation takes them.
+    names: Vec<usize>,
+}
+
+impl PartialEq for Formula {
+    fn eq(&self, other: &Formula) -> bool {
+        self.text == other.text
+    }
+}
+
+/// The names a formula may use, in the order [`Formula::value`] takes them.
+const NAMES: [&str; 4] = ["x", "y", "u", "v"];
+
+impl Formula {
+    /// Parses `text`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] (field `density`) for text that is not a formula
+    /// or uses a name other than `x`, `y`, `u`, `v`.
+    pub fn parse(text: &str) -> Result<Formula> {
+        let expr = exmex::parse::<f64>(text).map_err(|e| {
+            Error::invalid(
+                "density",
+                format!("is not a formula of x, y, u, v: {}", e.msg()),
+            )
+        })?;
+        let names = expr
+            .var_names()
+            .iter()
+            .map(|name| {
+                NAMES.iter().position(|n| n == name).ok_or_else(|| {
+                    Error::invalid(
+                        "density",
+                        format!(
+                            "uses the unknown name `{name}`: a formula may use x, y (mm) \
+                             and u, v (0–1 across the region)"
+                        ),
+                    )
+                })
+            })
+            .collect::<Result<Vec<usize>>>()?;
+        Ok(Formula {
+            text: text.to_string(),
+            expr,
+            names,
+        })
+    }
+
+    /// The formula as written.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The value at `x`, `y` (mm) and `u`, `v` (0–1 across the frame),
+    /// clamped to 0–1; 0 where it is not a number.
+    pub fn value(&self, x: f64, y: f64, u: f64, v: f64) -> f64 {
+        let all = [x, y, u, v];
+        let mut args = [0.0; 4];
+        for (arg, &i) in args.iter_mut().zip(&self.names) {
+            *arg = all[i];
+        }
+        match self.expr.eval(&args[..self.names.len()]) {
+            Ok(d) if d.is_nan() => 0.0,
+            Ok(d) => d.clamp(0.0, 1.0),
+            Err(_) => 0.0,
+        }
     }
 }
 
@@ -162,5 +296,57 @@ mod tests {
         assert!(d.at(Point::new(5.0, 45.0)).abs() < 1e-6);
         assert_eq!(d.at(Point::new(105.0, 20.0)), 0.0);
         assert!(d.at(Point::new(105.0, 35.0)) > 0.99);
+    }
+
+    #[test]
+    fn a_formula_reads_x_y_in_mm_and_u_v_across_the_frame() {
+        let frame = Rect::new(10.0, 20.0, 110.0, 220.0);
+        let f = Formula::parse("1 - v").unwrap();
+        let d = Density::new(frame).with_formula(&f);
+        assert!((d.at(Point::new(50.0, 20.0)) - 1.0).abs() < 1e-12);
+        assert!((d.at(Point::new(50.0, 120.0)) - 0.5).abs() < 1e-12);
+        assert!(d.at(Point::new(50.0, 220.0)).abs() < 1e-12);
+        // Names in any order map to the right values.
+        let f = Formula::parse("y / 1000 + x / 100 + 0 * u").unwrap();
+        assert!((f.value(30.0, 200.0, 0.3, 0.9) - 0.5).abs() < 1e-12);
+        // Clamped to 0–1, and not-a-number is 0.
+        let f = Formula::parse("x").unwrap();
+        assert_eq!(f.value(7.0, 0.0, 0.0, 0.0), 1.0);
+        assert_eq!(f.value(-7.0, 0.0, 0.0, 0.0), 0.0);
+        let f = Formula::parse("sqrt(x)").unwrap();
+        assert_eq!(f.value(-1.0, 0.0, 0.0, 0.0), 0.0);
+        // A constant needs no names.
+        assert_eq!(
+            Formula::parse("0.25").unwrap().value(1.0, 2.0, 3.0, 4.0),
+            0.25
+        );
+    }
+
+    #[test]
+    fn an_image_and_a_formula_multiply() {
+        let img = ramp(11, 3);
+        let frame = Rect::new(0.0, 0.0, 110.0, 30.0);
+        let f = Formula::parse("0.5").unwrap();
+        let d = Density::fitted(&img, frame).with_formula(&f);
+        assert!((d.at(Point::new(105.0, 15.0)) - 0.5).abs() < 1e-6);
+        assert!(d.at(Point::new(5.0, 15.0)).abs() < 1e-6);
+        assert_eq!(Density::new(frame).at(Point::new(1.0, 1.0)), 1.0);
+    }
+
+    #[test]
+    fn bad_formulas_are_refused_with_the_reason() {
+        for (text, wanted) in [
+            ("1 +", "is not a formula"),
+            ("", "is not a formula"),
+            ("x * z", "unknown name `z`"),
+            ("sin(", "is not a formula"),
+        ] {
+            let e = Formula::parse(text).unwrap_err();
+            assert!(
+                matches!(&e, Error::Invalid { field, message, .. }
+                    if field == "density" && message.contains(wanted)),
+                "{text}: {e}"
+            );
+        }
     }
 }

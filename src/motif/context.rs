@@ -26,6 +26,16 @@ pub struct Progress {
     pub total: usize,
 }
 
+/// Something a generator found worth telling the user that is not part
+/// of the drawing: how a relaxation converged, say.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Note {
+    /// Id of the motif's group (`<layer>.<table>`).
+    pub motif: String,
+    /// What it says, one line.
+    pub text: String,
+}
+
 /// The layer being built.
 #[derive(Debug, Clone, Copy)]
 struct Frame<'a> {
@@ -48,6 +58,7 @@ pub struct Context<'a> {
     adjust: Adjustments<'a>,
     progress: Progress,
     report: &'a mut dyn FnMut(Progress),
+    notes: Vec<Note>,
 }
 
 impl<'a> Context<'a> {
@@ -76,6 +87,7 @@ impl<'a> Context<'a> {
             adjust: Adjustments::new(&spec.adjust),
             progress: Progress { done: 0, total },
             report,
+            notes: Vec::new(),
         }
     }
 
@@ -199,12 +211,22 @@ impl<'a> Context<'a> {
         }
     }
 
-    /// Ends the scene: every adjustment must have found its target.
+    /// Tells the user `text` about the motif `motif` (its group id).
+    pub fn note(&mut self, motif: &str, text: impl Into<String>) {
+        self.notes.push(Note {
+            motif: motif.to_string(),
+            text: text.into(),
+        });
+    }
+
+    /// Ends the scene: every adjustment must have found its target. Gives
+    /// the notes, in the order they were made.
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] naming the first `adjust[i].id` that
     /// matched nothing.
-    pub(crate) fn finish(self) -> Result<()> {
-        self.adjust.finish()
+    pub(crate) fn finish(self) -> Result<Vec<Note>> {
+        self.adjust.finish()?;
+        Ok(self.notes)
     }
 }

@@ -24,7 +24,7 @@ mod tree;
 mod voronoi;
 
 pub(crate) use context::Context;
-pub use context::Progress;
+pub use context::{Note, Progress};
 pub(crate) use flora::user_drawing;
 pub use flora::{draw, Drawing, Library, MotifParams};
 pub(crate) use flow::{flow_line, Flow};

@@ -23,8 +23,8 @@ use crate::plot::PlotOptions;
 use crate::scene::{Color, Group, Layer, Node, Pen, Scene, Stats};
 use crate::spec::{
     Distribution, Draw, LayerSpec, LimbSpec, LimitsSpec, MarginSpec, OutputSpec, PageSpec,
-    PaperSize, PenSpec, RegionLinesSpec, RegionSpec, SceneSpec, SitesSpec, ValidSpec, VoronoiSpec,
-    FORMAT_VERSION,
+    PaperSize, PenSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec, SitesSpec,
+    ValidSpec, VoronoiSpec, FORMAT_VERSION,
 };
 
 /// What a fill draws: one of the ways the Voronoi family draws its sites.
@@ -93,7 +93,8 @@ impl FillPattern {
 /// What [`fill_scene`] draws and with which pen.
 ///
 /// Errors name the option at fault by these fields' names (`spacing`,
-/// `points`, `relax`, `pen`, `dot`, `seed`), and the drawing as `input`.
+/// `points`, `relax`, `converge`, `density`, `pen`, `dot`, `seed`), and
+/// the drawing as `input`.
 #[non_exhaustive]
 #[derive(Debug, Clone, PartialEq)]
 pub struct FillJob {
@@ -107,9 +108,20 @@ pub struct FillJob {
     /// This many sites spread uniformly at random (1–1,000,000) instead
     /// of Poisson-disk ones.
     pub points: Option<u32>,
-    /// Lloyd relaxation steps (0–200). Default the pattern's
+    /// Relaxation steps, at most (0–1000). Default the pattern's
     /// ([`FillPattern::default_relax`]).
     pub relax: Option<u32>,
+    /// Relax by weighted Linde-Buzo-Gray instead of Lloyd: sites split
+    /// and go until each cell holds one site's worth of density, `spacing`
+    /// apart where it is 1 (the count follows the image). Default false.
+    pub lbg: bool,
+    /// Stop relaxing once a step moves the sites less than this on
+    /// average, mm (0.00001–100). Default: every step.
+    pub converge: Option<f64>,
+    /// Density as a formula of the position (`x`, `y` mm, `u`, `v` 0–1
+    /// across the shapes' bounding box; see
+    /// [`crate::geom::density::Formula`]), times the image's if both.
+    pub density: Option<String>,
     /// The pen (1–999). Default: the smallest number the drawing does not
     /// use.
     pub pen: Option<u32>,
@@ -134,6 +146,9 @@ impl FillJob {
         spacing: None,
         points: None,
         relax: None,
+        lbg: false,
+        converge: None,
+        density: None,
         pen: None,
         dot: None,
         image: None,
@@ -173,6 +188,24 @@ impl FillJob {
     /// This job with `steps` Lloyd steps.
     pub const fn with_relax(mut self, steps: u32) -> FillJob {
         self.relax = Some(steps);
+        self
+    }
+
+    /// This job relaxing by weighted Linde-Buzo-Gray.
+    pub const fn with_lbg(mut self) -> FillJob {
+        self.lbg = true;
+        self
+    }
+
+    /// This job stopping relaxation once the sites move less than `mm`.
+    pub const fn with_converge(mut self, mm: f64) -> FillJob {
+        self.converge = Some(mm);
+        self
+    }
+
+    /// This job with sites denser where `formula` is high.
+    pub fn with_density(mut self, formula: impl Into<String>) -> FillJob {
+        self.density = Some(formula.into());
         self
     }
 
@@ -365,6 +398,9 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
     };
     let sites = SitesSpec {
         image: job.image.as_ref().map(|_| IMAGE.to_string()),
+        density: job.density.clone(),
+        // With LBG the spacing is the target, whatever the start.
+        spacing: sites.spacing.or(job.spacing),
         ..sites
     };
     let glass = job.pattern == FillPattern::Glass;
@@ -378,6 +414,12 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         },
         sites,
         relax: job.relax.unwrap_or(job.pattern.default_relax()),
+        relaxation: if job.lbg {
+            RelaxationMethod::Lbg
+        } else {
+            RelaxationMethod::Lloyd
+        },
+        converge: job.converge,
         draw: vec![job.pattern.draw()],
         inset: if glass { 0.8 } else { 1.0 },
         round: if glass { 1.0 } else { 0.0 },
@@ -433,6 +475,8 @@ fn by_option(e: Error) -> Error {
         (_, Some("sites.spacing")) => "spacing",
         (_, Some("sites.count")) => "points",
         (_, Some("relax")) => "relax",
+        (_, Some("converge")) => "converge",
+        (_, Some("sites.density")) => "density",
         (_, Some("dot")) => "dot",
         (_, Some(f)) if f.starts_with("region") => {
             let message = message

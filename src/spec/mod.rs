@@ -29,8 +29,8 @@ pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
 pub use trees::{Growth, LimbSpec, LimbStyle, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
 pub use voronoi::{
-    CircleSpec, Distribution, Draw, HoleSpec, RegionSpec, SitesSpec, VoronoiSpec, DEFAULT_SPACING,
-    MAX_SITES,
+    CircleSpec, Distribution, Draw, HoleSpec, RegionSpec, RelaxationMethod, SitesSpec, VoronoiSpec,
+    DEFAULT_SPACING, MAX_RELAX, MAX_SITES,
 };
 
 use serde::{Deserialize, Serialize};

@@ -13,6 +13,7 @@ use super::layer::Family;
 use super::validate::{point, points, range};
 use super::Points;
 use crate::error::{Error, Result};
+use crate::geom::density::Formula;
 
 /// A Voronoi/Delaunay pattern on a layer.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -27,10 +28,22 @@ pub struct VoronoiSpec {
     /// How the sites are spread.
     #[serde(default)]
     pub sites: SitesSpec,
-    /// Lloyd relaxation: this many times each site moves to its cell's
-    /// centroid, evening out the cells (0–200, default 0).
+    /// Relaxation: at most this many times each site moves to its cell's
+    /// centroid, evening out the cells (0–1000, default 0; see
+    /// `relaxation` and `converge`).
     #[serde(default, skip_serializing_if = "is_zero_u32")]
     pub relax: u32,
+    /// How the sites relax (default `"lloyd"`); `"lbg"` (weighted
+    /// Linde-Buzo-Gray) also splits and removes sites until each cell
+    /// holds one site's worth of density, so the count follows the
+    /// density: `sites.spacing` apart where it is 1.
+    #[serde(default, skip_serializing_if = "RelaxationMethod::is_lloyd")]
+    pub relaxation: RelaxationMethod,
+    /// Stop relaxing once a step moves the sites less than this on
+    /// average, mm (0.00001–100; default: run all `relax` steps, or with
+    /// `"lbg"` until no site splits or goes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub converge: Option<f64>,
     /// What is drawn, in this order (default `["cells"]`).
     #[serde(default = "default_draw")]
     pub draw: Vec<Draw>,
@@ -65,6 +78,27 @@ pub enum Draw {
     Sites,
     /// One pen-down line through every site (nearest neighbour, then 2-opt).
     Tour,
+}
+
+/// How sites relax.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RelaxationMethod {
+    /// Lloyd: each site moves to its cell's centroid, weighted by the
+    /// density when there is one (weighted Voronoi stippling, Secord
+    /// 2002); the count stays.
+    #[default]
+    Lloyd,
+    /// Weighted Linde-Buzo-Gray (Deussen et al. 2017): as Lloyd, and a
+    /// site whose cell holds much less than one site's worth of density
+    /// goes, one whose cell holds much more splits in two.
+    Lbg,
+}
+
+impl RelaxationMethod {
+    fn is_lloyd(&self) -> bool {
+        *self == RelaxationMethod::Lloyd
+    }
 }
 
 /// Where a pattern lies: at most one outer shape, less the holes.
@@ -140,6 +174,13 @@ pub struct SitesSpec {
     /// cell by darkness (weighted Voronoi stippling, Secord 2002).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub image: Option<String>,
+    /// Density as a formula of the position, used as `image` is (and
+    /// multiplied with it when both are given): `x`, `y` in mm, `u`, `v`
+    /// 0–1 across the region's bounding box, clamped to 0–1; e.g.
+    /// `"1 - v"` or `"0.5 + 0.5 * sin(x / 8)"` (see
+    /// [`crate::geom::density::Formula`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<String>,
 }
 
 /// A distribution of sites.
@@ -155,6 +196,9 @@ pub enum Distribution {
     #[default]
     Poisson,
 }
+
+/// The most relaxation steps.
+pub const MAX_RELAX: u32 = 1000;
 
 /// The most sites one pattern may have.
 pub const MAX_SITES: usize = 1_000_000;
@@ -193,11 +237,19 @@ impl SitesSpec {
         self.jitter.unwrap_or(0.5)
     }
 
-    fn check(&self, f: &str) -> Result<()> {
-        let allowed: &[&str] = match self.distribution {
-            Distribution::Uniform => &["count"],
-            Distribution::Grid => &["spacing", "jitter"],
-            Distribution::Poisson => &["spacing"],
+    /// Whether `image` or `density` is given.
+    pub fn is_weighted(&self) -> bool {
+        self.image.is_some() || self.density.is_some()
+    }
+
+    /// `lbg`: the sites relax by weighted Linde-Buzo-Gray, whose target
+    /// spacing is `spacing` whatever the distribution.
+    fn check(&self, f: &str, lbg: bool) -> Result<()> {
+        let allowed: &[&str] = match (self.distribution, lbg) {
+            (Distribution::Uniform, false) => &["count"],
+            (Distribution::Uniform, true) => &["count", "spacing"],
+            (Distribution::Grid, _) => &["spacing", "jitter"],
+            (Distribution::Poisson, _) => &["spacing"],
         };
         for (key, set) in [
             ("count", self.count.is_some()),
@@ -208,8 +260,9 @@ impl SitesSpec {
                 return Err(Error::invalid(
                     format!("{f}.{key}"),
                     format!(
-                        "does not apply to the {} distribution (it takes {})",
+                        "does not apply to the {} distribution{} (it takes {})",
                         self.distribution.name(),
+                        if lbg { "" } else { " with lloyd relaxation" },
                         allowed.join(", ")
                     ),
                 ));
@@ -232,6 +285,12 @@ impl SitesSpec {
         }
         if self.image.as_deref().is_some_and(|i| i.trim().is_empty()) {
             return Err(Error::invalid(format!("{f}.image"), "needs a file name"));
+        }
+        if let Some(text) = &self.density {
+            Formula::parse(text).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(format!("{f}.density"), message),
+                other => other,
+            })?;
         }
         Ok(())
     }
@@ -314,8 +373,24 @@ impl RegionSpec {
 impl Family for VoronoiSpec {
     fn check(&self, f: &str) -> Result<()> {
         self.region.check(&format!("{f}.region"))?;
-        self.sites.check(&format!("{f}.sites"))?;
-        range(&format!("{f}.relax"), self.relax, 0, 200)?;
+        let lbg = self.relaxation == RelaxationMethod::Lbg;
+        self.sites.check(&format!("{f}.sites"), lbg)?;
+        range(&format!("{f}.relax"), self.relax, 0, MAX_RELAX)?;
+        if lbg && self.relax == 0 {
+            return Err(Error::invalid(
+                format!("{f}.relax"),
+                "lbg relaxation needs steps: give relax = 1–1000 (50 is usually plenty)",
+            ));
+        }
+        if let Some(c) = self.converge {
+            if self.relax == 0 {
+                return Err(Error::invalid(
+                    format!("{f}.converge"),
+                    "does nothing without relax steps (give relax = 1–1000)",
+                ));
+            }
+            range(&format!("{f}.converge"), c, 0.00001, 100.0)?;
+        }
         if self.draw.is_empty() {
             return Err(Error::invalid(
                 format!("{f}.draw"),

@@ -26,17 +26,17 @@ use kurbo::{BezPath, Circle, Point, Shape};
 use super::adjust::about;
 use super::Context;
 use crate::error::{Error, Result};
-use crate::geom::density::Density;
+use crate::geom::density::{Density, Formula};
 use crate::geom::offset::offset;
 use crate::geom::region::Region;
 use crate::geom::voronoi::{
-    constrained_delaunay, delaunay_edges, lloyd_step, weighted_lloyd_step, CellOptions, Diagram,
-    Domain,
+    constrained_delaunay, delaunay_edges, relax, CellOptions, Diagram, Domain, Lbg, Relaxation,
+    Relaxed,
 };
 use crate::geom::{sample, tour, TOLERANCE};
 use crate::rng::RandomStream;
 use crate::scene::{Group, Style};
-use crate::spec::{Distribution, Draw, VoronoiSpec, MAX_SITES};
+use crate::spec::{Distribution, Draw, RelaxationMethod, VoronoiSpec, MAX_SITES};
 
 /// Builds a Voronoi pattern into a group with id `group_id`.
 ///
@@ -56,16 +56,33 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
         Some(name) => Some(cx.library().image(name)?),
         None => None,
     };
-    let density = image.map(|img| Density::fitted(img, region.bounds()));
-    let mut sites = sites(spec, &region, density.as_ref(), &mut rng, cx)?;
-    for _ in 0..spec.relax {
-        let step = match &density {
-            Some(d) => weighted_lloyd_step(&sites, &domain, &options, &|p| d.at(p))?,
-            None => lloyd_step(&sites, &domain, &options)?,
-        };
-        sites = step.sites;
-        cx.advance(1);
+    let formula = match &spec.sites.density {
+        Some(text) => Some(Formula::parse(text).map_err(|e| site_error(e, spec, 0.0, cx))?),
+        None => None,
+    };
+    let density = spec.sites.is_weighted().then(|| {
+        let mut d = Density::new(region.bounds());
+        if let Some(img) = image {
+            d = d.with_image(img);
+        }
+        if let Some(f) = &formula {
+            d = d.with_formula(f);
+        }
+        d
+    });
+    if let Some(d) = &density {
+        check_density(spec, d, &region, cx)?;
     }
+    let sites = sites(spec, &region, density.as_ref(), &mut rng, cx)?;
+    let sites = relaxed(
+        spec,
+        sites,
+        &domain,
+        &options,
+        density.as_ref(),
+        group_id,
+        cx,
+    )?;
     let mut group = Group::new(group_id);
     let style = Style::default();
     let needs_diagram = spec
@@ -117,6 +134,124 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
     Ok(group)
 }
 
+/// The sites relaxed as the description says, with a note on how far
+/// they settled; one unit of progress a step (the steps convergence saved
+/// are counted as done).
+fn relaxed(
+    spec: &VoronoiSpec,
+    sites: Vec<Point>,
+    domain: &Domain,
+    options: &CellOptions,
+    density: Option<&Density<'_>>,
+    group_id: &str,
+    cx: &mut Context<'_>,
+) -> Result<Vec<Point>> {
+    if spec.relax == 0 {
+        return Ok(sites);
+    }
+    let how = match spec.relaxation {
+        RelaxationMethod::Lloyd => Relaxation::lloyd(spec.relax),
+        RelaxationMethod::Lbg => Relaxation::lbg(
+            spec.relax,
+            Lbg::new(Lbg::mass_for_spacing(spec.sites.spacing())),
+        ),
+    }
+    .with_settled(spec.converge.unwrap_or(0.0));
+    // Cells weigh what they hold to the scale the density changes on:
+    // an image's pixel, and at most half the spacing of the sites.
+    let spacing = match (spec.sites.distribution, spec.sites.count) {
+        (Distribution::Uniform, Some(n)) if spec.sites.spacing.is_none() => {
+            (domain.area() / n as f64).sqrt()
+        }
+        _ => spec.sites.spacing(),
+    };
+    let detail = density
+        .and_then(Density::pixel)
+        .map_or(spacing / 2.0, |px| px.min(spacing / 2.0));
+    let options = options.with_density_detail(detail);
+    let start = cx.done();
+    let rho = density.map(|d| move |p: Point| d.at(p));
+    let rho = rho.as_ref().map(|f| f as &dyn Fn(Point) -> f64);
+    let first = sites.len();
+    let relaxed = relax(sites, domain, &options, rho, &how, &mut |_| cx.advance(1))
+        .map_err(|e| site_error(e, spec, domain.area(), cx))?;
+    cx.advance_to(start + spec.relax as usize);
+    cx.note(group_id, convergence(spec, first, &relaxed));
+    Ok(relaxed.sites)
+}
+
+/// One line on how a relaxation went: steps, sites, the last step's mean
+/// movement and how far the energy fell.
+fn convergence(spec: &VoronoiSpec, first: usize, relaxed: &Relaxed) -> String {
+    let method = match spec.relaxation {
+        RelaxationMethod::Lloyd => "Lloyd",
+        RelaxationMethod::Lbg => "LBG",
+    };
+    let (Some(head), Some(last)) = (relaxed.steps.first(), relaxed.steps.last()) else {
+        return format!("{method}: no steps");
+    };
+    let n = relaxed.steps.len();
+    let outcome = match (relaxed.converged, spec.converge) {
+        (true, Some(c)) => format!("converged in {n} steps (mean movement under {c} mm)"),
+        (true, None) => format!("settled in {n} steps"),
+        (false, Some(c)) => format!(
+            "did not converge in {n} steps (mean movement {:.3} mm, asked under {c} mm)",
+            last.mean_movement
+        ),
+        (false, None) => format!("{n} steps"),
+    };
+    let count = if relaxed.sites.len() == first {
+        format!("{first} sites")
+    } else {
+        format!("{first} → {} sites", relaxed.sites.len())
+    };
+    let energy = if head.energy > 0.0 {
+        format!(
+            ", energy −{:.1}%",
+            100.0 * (1.0 - last.energy / head.energy)
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "{method} relaxation: {outcome}; {count}; last step moved sites {:.4} mm on average{energy}",
+        last.mean_movement
+    )
+}
+
+/// A density that is 0 (or not a number) over the whole region would
+/// leave every site where it fell, or no site at all: say so.
+fn check_density(
+    spec: &VoronoiSpec,
+    density: &Density<'_>,
+    region: &Region,
+    cx: &Context<'_>,
+) -> Result<()> {
+    let b = region.bounds();
+    const N: usize = 32;
+    let any = (0..N * N).any(|k| {
+        let (i, j) = (k % N, k / N);
+        let p = Point::new(
+            b.x0 + (i as f64 + 0.5) / N as f64 * b.width(),
+            b.y0 + (j as f64 + 0.5) / N as f64 * b.height(),
+        );
+        density.at(p) > 0.0
+    });
+    if any {
+        return Ok(());
+    }
+    let field = if spec.sites.density.is_some() {
+        "sites.density"
+    } else {
+        "sites.image"
+    };
+    Err(Error::invalid(
+        cx.field(field),
+        "gives no density anywhere over the region (0, or not a number): nothing would \
+         draw sites to any place",
+    ))
+}
+
 /// The word a kind of line goes by in ids.
 fn name(draw: Draw) -> &'static str {
     match draw {
@@ -148,34 +283,7 @@ fn sites(
     let s = &spec.sites;
     // The samplers name their own arguments; the description's fields are
     // these.
-    let renamed = |e| match e {
-        Error::Invalid { field, message, .. } => {
-            let name = if field == "radius" {
-                "spacing"
-            } else {
-                field.as_str()
-            };
-            Error::invalid(cx.field(&format!("sites.{name}")), message)
-        }
-        // The sampler's cap is this family's limit on sites, not the
-        // scene's path budget.
-        Error::Budget { .. } => {
-            let name = if s.distribution == Distribution::Uniform {
-                "count"
-            } else {
-                "spacing"
-            };
-            Error::invalid(
-                cx.field(&format!("sites.{name}")),
-                format!(
-                    "would place more than {MAX_SITES} sites in a region of {:.0} mm²; \
-                     widen the spacing",
-                    region.area()
-                ),
-            )
-        }
-        other => other,
-    };
+    let renamed = |e| site_error(e, spec, region.area(), cx);
     match (s.distribution, density) {
         (Distribution::Uniform, None) => {
             sample::uniform(region, s.count.unwrap_or(1) as usize, rng).map_err(renamed)
@@ -202,6 +310,37 @@ fn sites(
             let radius = |p: Point| r / d.at(p).max(0.01).sqrt();
             sample::poisson_disk(region, &radius, r..=10.0 * r, rng, MAX_SITES).map_err(renamed)
         }
+    }
+}
+
+/// An error of the samplers or of relaxation in the description's terms:
+/// they name their own arguments (`radius`, `mass`, `density`), and their
+/// cap on sites is this family's limit, not the scene's path budget.
+fn site_error(e: Error, spec: &VoronoiSpec, area: f64, cx: &Context<'_>) -> Error {
+    let s = &spec.sites;
+    match e {
+        Error::Invalid { field, message, .. } => {
+            let name = match field.as_str() {
+                "radius" | "mass" => "spacing",
+                other => other,
+            };
+            Error::invalid(cx.field(&format!("sites.{name}")), message)
+        }
+        Error::Budget { .. } => {
+            let name = if s.distribution == Distribution::Uniform && s.spacing.is_none() {
+                "count"
+            } else {
+                "spacing"
+            };
+            Error::invalid(
+                cx.field(&format!("sites.{name}")),
+                format!(
+                    "would place more than {MAX_SITES} sites in a region of {area:.0} mm²; \
+                     widen the spacing"
+                ),
+            )
+        }
+        other => other,
     }
 }
 

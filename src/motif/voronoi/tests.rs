@@ -264,7 +264,32 @@ fn bad_tables_are_refused_with_their_field() {
             "draw = [\"cells\", \"cells\"]\n",
             "layers[0].voronoi[0].draw[1]: is listed twice",
         ),
-        ("relax = 500\n", "layers[0].voronoi[0].relax: must be between 0 and 200"),
+        ("relax = 5000\n", "layers[0].voronoi[0].relax: must be between 0 and 1000"),
+        (
+            "relaxation = \"lbg\"\n",
+            "layers[0].voronoi[0].relax: lbg relaxation needs steps",
+        ),
+        (
+            "converge = 0.01\n",
+            "layers[0].voronoi[0].converge: does nothing without relax steps",
+        ),
+        (
+            "relax = 5\nconverge = -1\n",
+            "layers[0].voronoi[0].converge: must be between",
+        ),
+        (
+            "sites = { spacing = 5, density = \"1 - \" }\n",
+            "layers[0].voronoi[0].sites.density: is not a formula of x, y, u, v",
+        ),
+        (
+            "sites = { spacing = 5, density = \"1 - w\" }\n",
+            "layers[0].voronoi[0].sites.density: uses the unknown name `w`",
+        ),
+        (
+            "sites = { distribution = \"uniform\", count = 5, spacing = 2 }\n",
+            "layers[0].voronoi[0].sites.spacing: does not apply to the uniform distribution \
+             with lloyd relaxation",
+        ),
         (
             "[layers.voronoi.region]\npolygon = [[0, 0], [10, 0], [20, 0]]\n",
             "layers[0].voronoi[0].region.polygon",
@@ -406,15 +431,25 @@ fn stipples_follow_the_image_darkness() {
 
 #[test]
 fn a_white_image_cannot_hold_sites() {
+    let table = "sites = { distribution = \"uniform\", count = 10, image = \"ramp.png\" }\n";
     let white = crate::geom::density::GreyImage::new(4, 4, vec![0.0; 16]).unwrap();
-    let e = scene_with_image(
-        "sites = { distribution = \"uniform\", count = 10, image = \"ramp.png\" }\n",
-        white,
-    )
-    .unwrap_err()
-    .to_string();
+    let e = scene_with_image(table, white).unwrap_err().to_string();
+    assert!(
+        e.contains("layers[0].voronoi[0].sites.image: gives no density anywhere"),
+        "{e}"
+    );
+    let mut faint = vec![0.0; 16];
+    faint[0] = 1e-4;
+    let faint = crate::geom::density::GreyImage::new(4, 4, faint).unwrap();
+    let e = scene_with_image(table, faint).unwrap_err().to_string();
     assert!(
         e.contains("layers[0].voronoi[0].sites.image: is too light"),
+        "{e}"
+    );
+    // A formula that is 0 everywhere is refused the same way.
+    let e = error("sites = { spacing = 5, density = \"x - 1000\" }\n");
+    assert!(
+        e.contains("layers[0].voronoi[0].sites.density: gives no density anywhere"),
         "{e}"
     );
 }
@@ -438,4 +473,66 @@ fn images_are_read_by_the_caller_from_png_or_jpeg() {
         "{e}"
     );
     assert!(std::error::Error::source(&e).is_some());
+}
+
+#[test]
+fn a_density_formula_places_sites_as_an_image_does() {
+    let s = scene(
+        "draw = [\"sites\"]\nsites = { distribution = \"uniform\", count = 600, density = \"u\" }\n",
+    );
+    let counts = bands(&s, 4);
+    // ∫u over the four bands: 1/16, 3/16, 5/16, 7/16 of the sites.
+    assert!(counts.windows(2).all(|w| w[1] > w[0]), "{counts:?}");
+    assert!(counts[3] > 4 * counts[0], "{counts:?}");
+}
+
+/// The notes a render of `table` makes.
+fn notes(table: &str) -> Vec<String> {
+    let spec = SceneSpec::parse(&text(table), Format::Toml).unwrap();
+    crate::project::render(&spec)
+        .unwrap()
+        .notes
+        .into_iter()
+        .map(|n| format!("{}: {}", n.motif, n.text))
+        .collect()
+}
+
+#[test]
+fn relaxation_reports_how_it_converged() {
+    let n = notes("relax = 500\nconverge = 0.05\nsites = { spacing = 8 }\n");
+    assert_eq!(n.len(), 1, "{n:?}");
+    assert!(
+        n[0].starts_with("l.voronoi-0: Lloyd relaxation: converged in "),
+        "{n:?}"
+    );
+    assert!(n[0].contains("energy −"), "{n:?}");
+    let n = notes("relax = 3\nsites = { spacing = 8 }\n");
+    assert!(n[0].contains(": 3 steps;"), "{n:?}");
+    // No relaxation, no note.
+    assert!(notes("sites = { spacing = 8 }\n").is_empty());
+}
+
+#[test]
+fn lbg_sets_the_count_from_the_density_and_the_spacing() {
+    // Density u over 128 × 190 mm: half of 24,320 mm², one site per
+    // (√3/2)·8² = 55.4 mm²: about 219 sites, whatever the start.
+    let table = |start: &str| {
+        format!(
+            "relaxation = \"lbg\"\nrelax = 200\ndraw = [\"sites\"]\n\
+             sites = {{ {start}, spacing = 8, density = \"u\" }}\n"
+        )
+    };
+    for start in [
+        "distribution = \"uniform\", count = 5",
+        "distribution = \"uniform\", count = 2000",
+        "distribution = \"poisson\"",
+    ] {
+        let s = scene(&table(start));
+        let n = paths_of(&s, "sites").len() as f64;
+        assert!(n > 219.0 / 1.5 && n < 219.0 / 0.6, "{start}: {n} sites");
+        let counts = bands(&s, 4);
+        assert!(counts[3] > 3 * counts[0], "{start}: {counts:?}");
+        let note = &notes(&table(start))[0];
+        assert!(note.contains("LBG relaxation: settled in"), "{note}");
+    }
 }

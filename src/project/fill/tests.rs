@@ -197,7 +197,8 @@ fn bad_options_are_named_as_options() {
         (job.clone().with_spacing(0.0), "spacing"),
         (job.clone().with_spacing(f64::NAN), "spacing"),
         (job.clone().with_points(0), "points"),
-        (job.clone().with_relax(1000), "relax"),
+        (job.clone().with_relax(5000), "relax"),
+        (job.clone().with_relax(5).with_converge(-1.0), "converge"),
         (job.clone().with_pen(0), "pen"),
         (job.clone().with_pen(1000), "pen"),
         (job.clone().with_seed(u64::MAX), "seed"),
@@ -207,6 +208,9 @@ fn bad_options_are_named_as_options() {
         assert_eq!(field, option, "{job:?}: {message}");
         assert!(message.starts_with("must be between"), "{message}");
     }
+    let (field, message) = invalid(frame(), job.clone().with_density("1 +"));
+    assert_eq!(field, "density");
+    assert!(message.starts_with("is not a formula"), "{message}");
     // Too many sites for the family: on the spacing, with the numbers.
     let big = r##"<svg xmlns="http://www.w3.org/2000/svg" width="1000mm" height="1000mm" viewBox="0 0 1000 1000">
         <rect width="1000" height="1000" stroke="#000" fill="none"/>
@@ -341,4 +345,19 @@ fn an_image_makes_its_dark_side_denser() {
     assert!(!centres
         .iter()
         .any(|p| p.x > 35.1 && p.x < 64.9 && p.y > 35.1 && p.y < 64.9));
+}
+
+#[test]
+fn lbg_stippling_follows_a_density_formula() {
+    // Density u over the frame: the count comes from the spacing, and
+    // the right half holds most of the dots.
+    let job = FillJob::new(FillPattern::Stipple)
+        .with_spacing(4.0)
+        .with_lbg()
+        .with_relax(100)
+        .with_density("u");
+    let filled = fill_scene(frame(), &job).unwrap();
+    let n = filled.fill.paths as f64;
+    // (80² − 30²)/2 mm² at one dot per (√3/2)·4² mm²: about 198.
+    assert!(n > 198.0 / 1.5 && n < 198.0 / 0.6, "{n} dots");
 }
