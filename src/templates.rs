@@ -44,6 +44,7 @@ pub const ALL: &[Template] = templates![
     "voronoi-stained-glass",
     "cracked-earth",
     "stipple-portrait",
+    "stipple-lbg",
     "delaunay-lowpoly",
 ];
 

@@ -315,6 +315,14 @@ mod tests {
         assert_eq!(f.value(-7.0, 0.0, 0.0, 0.0), 0.0);
         let f = Formula::parse("sqrt(x)").unwrap();
         assert_eq!(f.value(-1.0, 0.0, 0.0, 0.0), 0.0);
+        // The README's vignette: 1 in the middle, 0 at the corners.
+        let f = Formula::parse("1 - ((u - 0.5)^2 + (v - 0.5)^2) * 4").unwrap();
+        assert_eq!(f.value(0.0, 0.0, 0.5, 0.5), 1.0);
+        assert_eq!(f.value(0.0, 0.0, 0.0, 0.0), 0.0);
+        let bands = Formula::parse("0.5 + 0.5 * sin(x / 6)").unwrap();
+        assert!(
+            (bands.value(6.0 * std::f64::consts::FRAC_PI_2, 0.0, 0.0, 0.0) - 1.0).abs() < 1e-12
+        );
         // A constant needs no names.
         assert_eq!(
             Formula::parse("0.25").unwrap().value(1.0, 2.0, 3.0, 4.0),
