@@ -20,6 +20,7 @@ mod flora;
 mod flow;
 mod kimono;
 mod paths;
+mod region;
 mod tree;
 mod voronoi;
 

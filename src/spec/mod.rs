@@ -14,6 +14,7 @@ mod layer;
 mod locate;
 mod params;
 mod paths;
+mod region;
 mod trees;
 mod valid;
 mod validate;
@@ -26,11 +27,12 @@ pub use flora::{
 pub use layer::{Family, LayerItem, LayerSpec, Table};
 pub use params::{ResolvedTreeParams, TreeParams};
 pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
+pub use region::{CircleSpec, HoleSpec, RegionSpec};
 pub use trees::{Growth, LimbSpec, LimbStyle, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
 pub use voronoi::{
-    CircleSpec, Distribution, Draw, HoleSpec, RegionSpec, RelaxationMethod, SitesSpec, VoronoiSpec,
-    DEFAULT_SPACING, MAX_RELAX, MAX_SITES,
+    Distribution, Draw, RelaxationMethod, SitesSpec, VoronoiSpec, DEFAULT_SPACING, MAX_RELAX,
+    MAX_SITES,
 };
 
 use serde::{Deserialize, Serialize};

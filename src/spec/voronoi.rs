@@ -10,8 +10,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::layer::Family;
-use super::validate::{point, points, range};
-use super::Points;
+use super::region::RegionSpec;
+use super::validate::range;
 use crate::error::{Error, Result};
 use crate::geom::density::Formula;
 
@@ -99,53 +99,6 @@ impl RelaxationMethod {
     fn is_lloyd(&self) -> bool {
         *self == RelaxationMethod::Lloyd
     }
-}
-
-/// Where a pattern lies: at most one outer shape, less the holes.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RegionSpec {
-    /// A circle.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub circle: Option<CircleSpec>,
-    /// A polygon through these points (≥ 3, mm).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub polygon: Option<Points>,
-    /// The closed shapes of an SVG file, relative to the description, in
-    /// its own millimetres; shapes inside shapes are holes (even-odd).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub svg: Option<String>,
-    /// Shapes cut out of the region.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub holes: Vec<HoleSpec>,
-}
-
-impl RegionSpec {
-    fn is_page(&self) -> bool {
-        *self == RegionSpec::default()
-    }
-}
-
-/// A circle.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CircleSpec {
-    /// Centre, mm.
-    pub centre: [f64; 2],
-    /// Radius, mm (0.1–100,000).
-    pub radius: f64,
-}
-
-/// A shape cut out of a region: a circle or a polygon.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct HoleSpec {
-    /// A circle.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub circle: Option<CircleSpec>,
-    /// A polygon (≥ 3 points, mm).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub polygon: Option<Points>,
 }
 
 /// How sites are spread over the region.
@@ -303,70 +256,6 @@ impl Distribution {
             Distribution::Grid => "grid",
             Distribution::Poisson => "poisson",
         }
-    }
-}
-
-impl CircleSpec {
-    fn check(&self, f: &str) -> Result<()> {
-        point(&format!("{f}.centre"), self.centre)?;
-        range(&format!("{f}.radius"), self.radius, 0.1, 100_000.0)
-    }
-}
-
-/// Checks that exactly one (`outer`: at most one) shape is given.
-fn one_shape(f: &str, given: &[(&str, bool)], outer: bool) -> Result<()> {
-    let n = given.iter().filter(|(_, set)| *set).count();
-    let names: Vec<&str> = given.iter().map(|(k, _)| *k).collect();
-    if n > 1 || (!outer && n == 0) {
-        let what = if outer { "at most one" } else { "exactly one" };
-        return Err(Error::invalid(
-            f,
-            format!("give {what} of {}", names.join(", ")),
-        ));
-    }
-    Ok(())
-}
-
-impl RegionSpec {
-    fn check(&self, f: &str) -> Result<()> {
-        one_shape(
-            f,
-            &[
-                ("circle", self.circle.is_some()),
-                ("polygon", self.polygon.is_some()),
-                ("svg", self.svg.is_some()),
-            ],
-            true,
-        )?;
-        if let Some(c) = &self.circle {
-            c.check(&format!("{f}.circle"))?;
-        }
-        if let Some(p) = &self.polygon {
-            points(&format!("{f}.polygon"), p, 3)?;
-        }
-        if let Some(svg) = &self.svg {
-            if svg.trim().is_empty() {
-                return Err(Error::invalid(format!("{f}.svg"), "needs a file name"));
-            }
-        }
-        for (i, h) in self.holes.iter().enumerate() {
-            let hf = format!("{f}.holes[{i}]");
-            one_shape(
-                &hf,
-                &[
-                    ("circle", h.circle.is_some()),
-                    ("polygon", h.polygon.is_some()),
-                ],
-                false,
-            )?;
-            if let Some(c) = &h.circle {
-                c.check(&format!("{hf}.circle"))?;
-            }
-            if let Some(p) = &h.polygon {
-                points(&format!("{hf}.polygon"), p, 3)?;
-            }
-        }
-        Ok(())
     }
 }
 

@@ -17,13 +17,13 @@
 //! - `tour`: one pen-down line through every site.
 
 mod network;
-mod region;
 
 use std::collections::BTreeMap;
 
 use kurbo::{BezPath, Circle, Point, Shape};
 
 use super::adjust::about;
+use super::region::region;
 use super::Context;
 use crate::error::{Error, Result};
 use crate::geom::density::{Density, Formula};
@@ -44,7 +44,7 @@ use crate::spec::{Distribution, Draw, RelaxationMethod, VoronoiSpec, MAX_SITES};
 /// A region that encloses nothing; more sites than [`MAX_SITES`]; the path
 /// budget; an SVG region file that was not loaded.
 pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-    let region = region::region(&spec.region, cx)?;
+    let region = region(&spec.region, cx)?;
     let domain = Domain::new(&region, TOLERANCE)?;
     let options = CellOptions::DEFAULT.with_max_sites(MAX_SITES);
     // Sites come from the table's own id, not the layer's: tables with the

@@ -1,11 +1,12 @@
-//! The region a Voronoi pattern fills, from its `[region]` table: the
-//! page inside its margins, a circle, a polygon or the closed shapes of an
-//! SVG file, less the holes. Like every coordinate of a description, they
-//! are millimetres from the top left corner inside the margins.
+//! The region a pattern fills, from its `[region]` table (voronoi,
+//! zentangle): the page inside its margins, a circle, a polygon or the
+//! closed shapes of an SVG file, less the holes. Like every coordinate of
+//! a description, they are millimetres from the top left corner inside
+//! the margins.
 
 use kurbo::{Circle, Point, Rect, Shape};
 
-use super::super::Context;
+use super::Context;
 use crate::error::{Error, Result};
 use crate::geom::region::{FillRule, Region};
 use crate::spec::{CircleSpec, RegionSpec};
@@ -19,7 +20,7 @@ const CIRCLE_ACCURACY: f64 = 1e-6;
 /// # Errors
 /// [`Error::Invalid`] naming the field when the shape encloses no area or
 /// the holes leave nothing; an SVG file that was not loaded.
-pub(super) fn region(spec: &RegionSpec, cx: &Context<'_>) -> Result<Region> {
+pub(crate) fn region(spec: &RegionSpec, cx: &Context<'_>) -> Result<Region> {
     let field = cx.field("region");
     let outer = if let Some(c) = &spec.circle {
         circle(c, &format!("{field}.circle"))?
