@@ -18,7 +18,7 @@
 # MiB) and measured by the same independent script (bench/stipple_quality.py:
 # tone fidelity, tone exponent, evenness). Prints a Markdown table (python /
 # moyo time: >1 means moyo is faster) and saves it to
-# target/bench/stipple_vs_secord.md; the first count's stipples are also drawn
+# target/bench/stipple_vs_secord.md; 10,000 stipples (or the first count) are drawn
 # side by side (stipple_vs_secord_side.png, same dots for both) and moyo's own
 # preview is kept (stipple_vs_secord_moyo.png).
 set -euo pipefail
@@ -39,7 +39,7 @@ CONVERGE=${CONVERGE:-}
 PX_PER_STIPPLE=${PX_PER_STIPPLE:-100}
 # The picture: page, margin, and the rectangle the image fills (mm, from
 # the top left inside the margins; 3:4 like the image).
-MARGIN=12 X=17 Y=33 W=90 H=120 DOT=0.3 PEN=0.3
+MARGIN=12 X=17 Y=33 W=90 H=120 DOT=0.1 PEN=0.2
 FRAME="$((MARGIN + X)),$((MARGIN + Y)),$W,$H"
 
 venv=target/stipple-venv
@@ -102,7 +102,7 @@ measure() {
 }
 
 # Field $2 of the quality JSON line for file $1.
-quality() { "$py" -c "import json,sys; d=json.loads(sys.stdin.read()); print(f'{d[\"$2\"]:.3f}')" < "$work/q-$1.json"; }
+quality() { "$py" -c "import json,sys; v=json.load(sys.stdin)['$2']; print(v if isinstance(v, int) else f'{v:.3f}')" < "$work/q-$1.json"; }
 ratio() { "$py" -c "print(f'{$1 / $2:.1f}' if $2 else 'inf')"; }
 
 # Python's mean movement (mm) after steps 1, 10, 25, 50, … and the first
@@ -120,12 +120,15 @@ PY
 counts=("$@")
 [ ${#counts[@]} -gt 0 ] || counts=(10000)
 notes=()
+# Drawn side by side: 10,000 stipples if run, else the first count.
+drawn=${counts[0]}
+for n in "${counts[@]}"; do [ "$n" != 10000 ] || drawn=10000; done
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%MZ), commit $(git rev-parse --short HEAD), $(nproc) cores, load before $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "settings: relax = $RELAX, converge = ${CONVERGE:-none (fixed steps)}, secord.py $PX_PER_STIPPLE non-white px per stipple; cells: moyo / python"
   echo
-  echo "| stipples | steps moyo / python | moyo s | python s | time python/moyo | MiB moyo / python | fidelity MAD | fidelity r | tone exponent γ | evenness CV |"
-  echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| stipples | steps moyo / python | moyo s | python s | time python/moyo | MiB moyo / python | fidelity MAD | fidelity r | tone exponent γ | evenness CV | stray |"
+  echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   for n in "${counts[@]}"; do
     for steps in 0 "$RELAX"; do
       describe "$n" "$steps" > "$work/desc.toml"
@@ -134,7 +137,7 @@ notes=()
       [ -z "$CONVERGE" ] || args+=(--converge "$CONVERGE")
       read -r pt pm < <(measure "$py" bench/secord.py "$image" "${args[@]}" -o "$work/python.json")
       draw=()
-      if [ "$n" = "${counts[0]}" ] && [ "$steps" = "$RELAX" ]; then
+      if [ "$n" = "$drawn" ] && [ "$steps" = "$RELAX" ]; then
         draw=(--draw "$out/stipple_vs_secord_side.png" --dot-radius "$("$py" -c "print($DOT + $PEN / 2)")")
         measure "$moyo" render "$work/desc.toml" -o "$work/preview.svg" --png "$out/stipple_vs_secord_moyo.png" --dpi 254 > /dev/null
       fi
@@ -145,7 +148,7 @@ notes=()
       ms=$steps
       [ -z "$CONVERGE" ] || ms="≤ $steps"
       row="| $n | $ms / $ps | $mt | $pt | $(ratio "$pt" "$mt") | $(ratio "$mm" 1024 | cut -d. -f1) / $(ratio "$pm" 1024 | cut -d. -f1)"
-      for f in fidelity_mad fidelity_r tone_exponent evenness_cv; do
+      for f in fidelity_mad fidelity_r tone_exponent evenness_cv stray; do
         row+=" | $(quality moyo $f) / $(quality python $f)"
       done
       echo "$row |"
