@@ -22,11 +22,8 @@
 # side by side (stipple_vs_secord_side.png, same dots for both) and moyo's own
 # preview is kept (stipple_vs_secord_moyo.png).
 set -euo pipefail
-cd "$(dirname "$0")/.."
-out=${BENCH_OUT:-target/bench}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
+# shellcheck source=bench/lib.sh
+source "$(dirname "$0")/lib.sh"
 
 # ---- Relaxation settings: the one place both sides take them from. ----
 # Most weighted Lloyd steps (moyo `relax`, secord.py --iterations).
@@ -90,15 +87,6 @@ distribution = "uniform"
 count = $count
 image = "images/portrait.jpg"
 TOML
-}
-
-# Wall seconds and peak RSS (KiB) of a command, via GNU time.
-measure() {
-  /usr/bin/time -f "%e %M" -o "$work/time" "$@" > /dev/null 2> "$work/stderr" || {
-    cat "$work/stderr" >&2
-    return 1
-  }
-  cat "$work/time"
 }
 
 # Field $2 of the quality JSON line for file $1.
