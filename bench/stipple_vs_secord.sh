@@ -16,11 +16,11 @@
 # first with no relaxation (the rejection-sampled start only), then with
 # RELAX weighted Lloyd steps. Both are timed with GNU time (wall s, peak
 # MiB) and measured by the same independent script (bench/stipple_quality.py:
-# tone fidelity, tone exponent, evenness). Prints a Markdown table (python /
-# moyo time: >1 means moyo is faster) and saves it to
-# target/bench/stipple_vs_secord.md; 10,000 stipples (or the first count) are drawn
-# side by side (stipple_vs_secord_side.png, same dots for both) and moyo's own
-# preview is kept (stipple_vs_secord_moyo.png).
+# tone fidelity, tone exponent, evenness, stray dots). Prints a Markdown
+# table (python / moyo time: >1 means moyo is faster) and saves it to
+# target/bench/stipple_vs_secord.md; 10,000 stipples (or the first count)
+# are drawn side by side (stipple_vs_secord_side.png, the same dots for
+# both) and moyo's own preview is kept (stipple_vs_secord_moyo.png).
 set -euo pipefail
 # shellcheck source=bench/lib.sh
 source "$(dirname "$0")/lib.sh"
@@ -92,6 +92,7 @@ TOML
 # Field $2 of the quality JSON line for file $1.
 quality() { "$py" -c "import json,sys; v=json.load(sys.stdin)['$2']; print(v if isinstance(v, int) else f'{v:.3f}')" < "$work/q-$1.json"; }
 ratio() { "$py" -c "print(f'{$1 / $2:.1f}' if $2 else 'inf')"; }
+mib() { "$py" -c "print(round($1 / 1024))"; }
 
 # Python's mean movement (mm) after steps 1, 10, 25, 50, … and the first
 # step below 0.01 and 0.005 mm: what a `converge` threshold would stop at.
@@ -134,8 +135,8 @@ for n in "${counts[@]}"; do [ "$n" != 10000 ] || drawn=10000; done
       sed -n 2p "$work/q.json" > "$work/q-python.json"
       ps=$("$py" -c "import json; print(json.load(open('$work/python.json'))['iterations'])")
       ms=$steps
-      [ -z "$CONVERGE" ] || ms="≤ $steps"
-      row="| $n | $ms / $ps | $mt | $pt | $(ratio "$pt" "$mt") | $(ratio "$mm" 1024 | cut -d. -f1) / $(ratio "$pm" 1024 | cut -d. -f1)"
+      [ -z "$CONVERGE" ] || [ "$steps" = 0 ] || ms="≤ $steps"
+      row="| $n | $ms / $ps | $mt | $pt | $(ratio "$pt" "$mt") | $(mib "$mm") / $(mib "$pm")"
       for f in fidelity_mad fidelity_r tone_exponent evenness_cv stray; do
         row+=" | $(quality moyo $f) / $(quality python $f)"
       done
