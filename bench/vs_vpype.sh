@@ -13,11 +13,8 @@
 # ink ratios (vpype / moyo for time and memory: >1 means moyo is better;
 # moyo / vpype for travel and ink). Results: target/bench/vs_vpype.md.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-out=${BENCH_OUT:-target/bench}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
+# shellcheck source=bench/lib.sh
+source "$(dirname "$0")/lib.sh"
 
 venv=target/vpype-venv
 if [ ! -x "$venv/bin/vpype" ]; then
@@ -26,15 +23,6 @@ if [ ! -x "$venv/bin/vpype" ]; then
 fi
 cargo build --release --quiet --bin moyo
 moyo=target/release/moyo
-
-# Wall seconds and peak RSS (KiB) of a command, via GNU time.
-measure() {
-  /usr/bin/time -f "%e %M" -o "$work/time" "$@" > /dev/null 2> "$work/stderr" || {
-    cat "$work/stderr" >&2
-    return 1
-  }
-  cat "$work/time"
-}
 
 metric() { "$venv/bin/python" bench/svg_metrics.py "$1" | "$venv/bin/python" -c "import json,sys; print(json.load(sys.stdin)['$2'])"; }
 ratio() { "$venv/bin/python" -c "print(f'{$1 / $2:.2f}' if $2 else 'inf')"; }
