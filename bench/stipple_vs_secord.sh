@@ -4,7 +4,7 @@
 #
 #   bench/stipple_vs_secord.sh                  # 10,000 stipples
 #   bench/stipple_vs_secord.sh 2000 10000 20000 # custom counts
-#   RELAX=100 bench/stipple_vs_secord.sh        # more steps (both sides)
+#   RELAX=50 CONVERGE= bench/stipple_vs_secord.sh # exactly 50 steps (both sides)
 #
 # Creates a Python virtual environment with numpy, scipy and Pillow in
 # target/stipple-venv when missing, builds moyo (release, in
@@ -27,11 +27,10 @@ source "$(dirname "$0")/lib.sh"
 
 # ---- Relaxation settings: the one place both sides take them from. ----
 # Most weighted Lloyd steps (moyo `relax`, secord.py --iterations).
-RELAX=${RELAX:-50}
-# >>> CONVERGE: stop once a step's mean stipple movement is below this many
-# >>> mm (moyo `converge`, secord.py --converge). Empty: exactly RELAX steps.
-# >>> moyo reads `converge` only once [[layers.voronoi]] has that field.
-CONVERGE=${CONVERGE:-}
+RELAX=${RELAX:-200}
+# Stop once a step's mean stipple movement is below this many mm (moyo
+# `converge`, secord.py --converge); empty: exactly RELAX steps.
+CONVERGE=${CONVERGE-0.005}
 # Working raster of secord.py: non-white pixels per stipple (see its doc).
 PX_PER_STIPPLE=${PX_PER_STIPPLE:-100}
 # The picture: page, margin, and the rectangle the image fills (mm, from
@@ -75,7 +74,7 @@ name = "stipples"
 [[layers.voronoi]]
 id = "portrait"
 relax = $steps
-${CONVERGE:+converge = $CONVERGE}
+$([ "$steps" = 0 ] || echo "${CONVERGE:+converge = $CONVERGE}")
 draw = ["sites"]
 dot = $DOT
 
@@ -122,6 +121,9 @@ for n in "${counts[@]}"; do [ "$n" != 10000 ] || drawn=10000; done
     for steps in 0 "$RELAX"; do
       describe "$n" "$steps" > "$work/desc.toml"
       read -r mt mm < <(measure "$moyo" render "$work/desc.toml" --precision 6 -o "$work/moyo.svg")
+      # moyo notes how its relaxation went: "… converged in 24 steps …".
+      ms=$(grep -o '[0-9]\+ steps' "$work/stderr" | head -1 | cut -d' ' -f1 || true)
+      ms=${ms:-$steps}
       args=(--count "$n" --frame "$FRAME" --iterations "$steps" --px-per-stipple "$PX_PER_STIPPLE")
       [ -z "$CONVERGE" ] || args+=(--converge "$CONVERGE")
       read -r pt pm < <(measure "$py" bench/secord.py "$image" "${args[@]}" -o "$work/python.json")
@@ -134,8 +136,6 @@ for n in "${counts[@]}"; do [ "$n" != 10000 ] || drawn=10000; done
       sed -n 1p "$work/q.json" > "$work/q-moyo.json"
       sed -n 2p "$work/q.json" > "$work/q-python.json"
       ps=$("$py" -c "import json; print(json.load(open('$work/python.json'))['iterations'])")
-      ms=$steps
-      [ -z "$CONVERGE" ] || [ "$steps" = 0 ] || ms="≤ $steps"
       row="| $n | $ms / $ps | $mt | $pt | $(ratio "$pt" "$mt") | $(mib "$mm") / $(mib "$pm")"
       for f in fidelity_mad fidelity_r tone_exponent evenness_cv stray; do
         row+=" | $(quality moyo $f) / $(quality python $f)"
