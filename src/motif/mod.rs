@@ -22,6 +22,7 @@ mod kimono;
 mod paths;
 mod tree;
 mod voronoi;
+mod zentangle;
 
 pub(crate) use context::Context;
 pub use context::Progress;

@@ -1,0 +1,12 @@
+//! The `zentangle` family (SPEC §2, issue 10): the filling process of the
+//! zentangle paper in exact vector form.
+//!
+//! This folder will own the family: its elements, placement templates,
+//! region patterns, the twenty procedures with their seed groups and the
+//! filling loop. For now it holds the library layer the family stands on:
+//! - `element`: the 26 elements (basic and compound shapes) as marks in
+//!   painter's order, their placement and hand-drawn deformation.
+// Wired by the zentangle family (issue 10, next step).
+#![allow(dead_code)]
+
+mod element;
