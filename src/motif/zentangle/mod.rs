@@ -5,8 +5,12 @@
 //! region patterns, the twenty procedures with their seed groups and the
 //! filling loop. For now it holds the library layer the family stands on:
 //! - `element`: the 26 elements (basic and compound shapes) as marks in
-//!   painter's order, their placement and hand-drawn deformation.
+//!   painter's order, their placement and hand-drawn deformation;
+//! - `compose`: what a list of marks does to a white region: the visible
+//!   lines, the white pieces left (with the mark each lies in) and the
+//!   black area.
 // Wired by the zentangle family (issue 10, next step).
 #![allow(dead_code)]
 
+mod compose;
 mod element;
