@@ -181,22 +181,18 @@ pub(crate) fn compose(
 
     // White areas are cut by polygons (see the module docs): every fill's
     // interior and every ink flattened once.
-    let fill_polygons: Vec<Polygons> = areas
-        .iter()
-        .map(|a| {
-            a.as_ref()
-                .map(|r| polygons(r, tolerance))
-                .unwrap_or_default()
-        })
-        .collect();
-    let ink_polygons: Vec<Polygons> = inks
-        .iter()
-        .map(|a| {
-            a.as_ref()
-                .map(|r| polygons(r, tolerance))
-                .unwrap_or_default()
-        })
-        .collect();
+    let flatten = |regions: &[Option<Region>]| -> Vec<Polygons> {
+        regions
+            .iter()
+            .map(|a| {
+                a.as_ref()
+                    .map(|r| polygons(r, tolerance))
+                    .unwrap_or_default()
+            })
+            .collect()
+    };
+    let fill_polygons = flatten(&areas);
+    let ink_polygons = flatten(&inks);
     // Everything painted or inked over a box after mark `after` (after
     // nothing for `None`): later fills and all the ink.
     let cover = |bounds: Rect, after: Option<usize>| -> Polygons {
@@ -397,9 +393,10 @@ impl BoxIndex {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::motif::zentangle::element::tests::{distance_to, samples};
     use crate::motif::zentangle::element::{marks, wobble, Shape};
     use crate::rng::Seed;
-    use kurbo::{Affine, Circle, Line, ParamCurve, ParamCurveNearest};
+    use kurbo::{Affine, Circle, Line};
 
     const PEN: f64 = 0.3;
     const TOL: f64 = 0.01;
@@ -467,18 +464,10 @@ mod tests {
     }
 
     fn check_strokes_inside(region: &Region, c: &Composed) {
-        let outline = region.path();
         for s in &c.strokes {
-            for seg in s.segments() {
-                for k in 0..=10 {
-                    let p = seg.eval(k as f64 / 10.0);
-                    let d = outline
-                        .segments()
-                        .map(|e| e.nearest(p, 1e-9).distance_sq)
-                        .fold(f64::INFINITY, f64::min)
-                        .sqrt();
-                    assert!(region.contains(p) || d <= 2.0 * TOL, "{p:?} is {d} outside");
-                }
+            for p in samples(s) {
+                let d = distance_to(region.path(), p);
+                assert!(region.contains(p) || d <= 2.0 * TOL, "{p:?} is {d} outside");
             }
         }
     }

@@ -798,7 +798,7 @@ fn spiral_circle(fill: Paint) -> Vec<Mark> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::rng::Seed;
     use kurbo::{ParamCurveNearest, PathEl};
@@ -808,13 +808,14 @@ mod tests {
     }
 
     /// Points along every segment of `path`.
-    fn samples(path: &BezPath) -> Vec<Point> {
+    pub(in crate::motif::zentangle) fn samples(path: &BezPath) -> Vec<Point> {
         path.segments()
             .flat_map(|s| (0..=8).map(move |k| s.eval(k as f64 / 8.0)))
             .collect()
     }
 
-    fn distance_to(path: &BezPath, p: Point) -> f64 {
+    /// The distance from `p` to the nearest point of `path`.
+    pub(in crate::motif::zentangle) fn distance_to(path: &BezPath, p: Point) -> f64 {
         path.segments()
             .map(|s| s.nearest(p, 1e-9).distance_sq)
             .fold(f64::INFINITY, f64::min)
