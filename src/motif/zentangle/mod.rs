@@ -8,9 +8,12 @@
 //!   painter's order, their placement and hand-drawn deformation;
 //! - `compose`: what a list of marks does to a white region: the visible
 //!   lines, the white pieces left (with the mark each lies in) and the
-//!   black area.
+//!   black area;
+//! - `placement`: the placement templates MR, MT, MS, MA, MC and ML, where
+//!   the elements of a symmetric pattern go.
 // Wired by the zentangle family (issue 10, next step).
 #![allow(dead_code)]
 
 mod compose;
 mod element;
+mod placement;
