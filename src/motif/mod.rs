@@ -23,6 +23,7 @@ mod paths;
 mod region;
 mod tree;
 mod voronoi;
+mod zentangle;
 
 pub(crate) use context::Context;
 pub use context::{Note, Progress};
