@@ -696,7 +696,7 @@ fn sierpinski(fill: Paint, depth: u32) -> Vec<Mark> {
 /// smaller than [`PARADOX_MIN_SIZE`] of the outline. White: the inner
 /// polygons are lines. Black: they are painted white and black in turn,
 /// so the twist shows as bands.
-fn paradox(outline: &[Point], fill: Paint) -> Vec<Mark> {
+pub(super) fn paradox(outline: &[Point], fill: Paint) -> Vec<Mark> {
     let size = |p: &[Point]| (p[1] - p[0]).hypot();
     let first = size(outline);
     let mut marks = vec![Mark::new(polygon(outline), fill)];

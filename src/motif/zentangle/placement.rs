@@ -53,7 +53,8 @@ pub(crate) const MAX_INSTANCES: usize = 100_000;
 /// Accuracy (in units of the element size) of arc lengths along stems.
 const STEM_ACCURACY: f64 = 1e-4;
 
-/// Which element of a pattern goes where (the paper's a, b, c, d).
+/// Which element of a pattern goes where (the paper's a, b, c; no
+/// template here needs its d).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum Slot {
     /// The pattern's first element.
@@ -62,8 +63,6 @@ pub(crate) enum Slot {
     B,
     /// The third.
     C,
-    /// The fourth.
-    D,
 }
 
 /// One element of a pattern: where and which.
