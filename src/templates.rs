@@ -45,6 +45,11 @@ pub const ALL: &[Template] = templates![
     "cracked-earth",
     "stipple-portrait",
     "stipple-lbg",
+    "zentangle-1",
+    "zentangle-2",
+    "zentangle-10",
+    "zentangle-50",
+    "zentangle-200",
     "delaunay-lowpoly",
 ];
 

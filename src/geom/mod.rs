@@ -25,6 +25,7 @@ pub mod voronoi;
 mod bow;
 mod point_index;
 mod side;
+pub(crate) mod simplify;
 mod spline;
 mod taper;
 mod tour;

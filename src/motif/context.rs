@@ -13,7 +13,7 @@ use super::flow::Flow;
 use crate::error::Result;
 use crate::rng::{RandomStream, Seed};
 use crate::scene::PathBudget;
-use crate::spec::{LayerSpec, ValidSpec};
+use crate::spec::{LayerSpec, PenSpec, ValidSpec};
 use crate::units::Page;
 
 /// How far generation has come, in work units of any family (a tree, a
@@ -59,6 +59,7 @@ pub struct Context<'a> {
     progress: Progress,
     report: &'a mut dyn FnMut(Progress),
     notes: Vec<Note>,
+    pens: &'a [PenSpec],
 }
 
 impl<'a> Context<'a> {
@@ -88,6 +89,7 @@ impl<'a> Context<'a> {
             progress: Progress { done: 0, total },
             report,
             notes: Vec::new(),
+            pens: &spec.pens,
         }
     }
 
@@ -134,6 +136,16 @@ impl<'a> Context<'a> {
     /// same id always gets the same stream.
     pub fn stream(&self, id: &str) -> RandomStream {
         self.seed.derive(id).stream()
+    }
+
+    /// The width (mm) of the pen the current layer draws with (0.3 when
+    /// the description names no such pen).
+    pub fn pen_width(&self) -> f64 {
+        let number = self.layer.map(|f| f.spec.pen);
+        self.pens
+            .iter()
+            .find(|p| Some(p.number) == number)
+            .map_or(0.3, |p| p.width)
     }
 
     /// The scene's seed.

@@ -23,6 +23,7 @@ mod paths;
 mod region;
 mod tree;
 mod voronoi;
+mod zentangle;
 
 pub(crate) use context::Context;
 pub use context::{Note, Progress};
@@ -50,6 +51,7 @@ pub fn build(item: &LayerItem<'_>, cx: &mut Context<'_>) -> Result<Group> {
         Table::Trees(t) => kimono::tree_set(t, &id, cx),
         Table::Paths(t) => paths::build(t, &id, cx),
         Table::Voronoi(t) => voronoi::build(t, &id, cx),
+        Table::Zentangle(t) => zentangle::build(t, &id, cx),
     }?;
     cx.advance_to(done);
     Ok(group)

@@ -457,6 +457,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
             background: None,
             paths: Vec::new(),
             voronoi: vec![table],
+            zentangle: Vec::new(),
         }],
         plot: PlotOptions::default(),
         adjust: Vec::new(),

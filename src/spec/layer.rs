@@ -11,7 +11,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{BackgroundSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec, VoronoiSpec};
+use super::{
+    BackgroundSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec, VoronoiSpec, ZentangleSpec,
+};
 use crate::error::Result;
 
 /// One depth layer.
@@ -41,6 +43,9 @@ pub struct LayerSpec {
     /// Voronoi and Delaunay patterns inside a region.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub voronoi: Vec<VoronoiSpec>,
+    /// Zentangle fills inside a region.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub zentangle: Vec<ZentangleSpec>,
 }
 
 fn default_pen_number() -> u32 {
@@ -59,6 +64,8 @@ pub enum Table<'a> {
     Paths(&'a PathsSpec),
     /// `[[layers.voronoi]]`: Voronoi and Delaunay patterns in a region.
     Voronoi(&'a VoronoiSpec),
+    /// `[[layers.zentangle]]`: zentangle fills in a region.
+    Zentangle(&'a ZentangleSpec),
 }
 
 /// What the seam needs from every family's table.
@@ -101,6 +108,7 @@ impl<'a> Table<'a> {
             Table::Trees(t) => t,
             Table::Paths(t) => t,
             Table::Voronoi(t) => t,
+            Table::Zentangle(t) => t,
         }
     }
 }
@@ -135,6 +143,13 @@ impl LayerSpec {
             &self.voronoi,
             |t| &t.id,
             Table::Voronoi,
+        );
+        numbered(
+            &mut items,
+            "zentangle",
+            &self.zentangle,
+            |t| &t.id,
+            Table::Zentangle,
         );
         items
     }

@@ -19,6 +19,7 @@ mod trees;
 mod valid;
 mod validate;
 mod voronoi;
+mod zentangle;
 
 pub use flora::{
     AdjustSpec, Assign, BackgroundSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec,
@@ -34,6 +35,7 @@ pub use voronoi::{
     Distribution, Draw, RelaxationMethod, SitesSpec, VoronoiSpec, DEFAULT_SPACING, MAX_RELAX,
     MAX_SITES,
 };
+pub use zentangle::{Black, ManualStep, ZentangleSpec, ELEMENTS, MAX_STEPS, PROCEDURES};
 
 use serde::{Deserialize, Serialize};
 

@@ -18,6 +18,8 @@
 
 mod network;
 
+pub(in crate::motif) use network::cell_network;
+
 use std::collections::BTreeMap;
 
 use kurbo::{BezPath, Circle, Point, Shape};

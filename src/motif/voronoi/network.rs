@@ -20,7 +20,7 @@ const PROBE: f64 = 1e-5;
 /// Which cell is across an edge is the site nearest to a point just
 /// outside the edge's middle: the neighbour for a shared edge (the edge
 /// lies on their bisector), the cell's own site on the region's outline.
-pub(super) fn cell_network(diagram: &Diagram) -> Vec<BezPath> {
+pub(in crate::motif) fn cell_network(diagram: &Diagram) -> Vec<BezPath> {
     let cells = diagram.cells();
     // Sites without a cell (merged, dropped, outside) are never the nearest.
     let owners: Vec<Point> = diagram

@@ -1,0 +1,217 @@
+//! The filling loop (SPEC §2.4, the paper's §5.3) in vector form: the
+//! white regions are exact regions, each with its seed and its largest
+//! inscribed circle (found once, when the region is made); a step takes
+//! the region whose circle is largest, draws the procedure its seed names
+//! only inside it (`compose`), and puts back the white pieces left, each
+//! with a seed — the one the mark it lies in was given, or its parent's.
+//! Black is finished. A step touches one region and the pieces it makes,
+//! whatever the number of regions (a heap keeps them by circle).
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use kurbo::{BezPath, Point};
+
+use super::compose::compose;
+use super::element::{Mark, Paint};
+use super::procedure::{draw, Allowed, Target, G1};
+use crate::error::{Error, Result};
+use crate::geom::polylabel::pole_of_inaccessibility;
+use crate::geom::region::Region;
+use crate::rng::RandomStream;
+
+/// A white region waiting to be filled.
+#[derive(Debug, Clone)]
+struct Area {
+    region: Region,
+    /// The procedure it calls; `None`: any (the blank page's seed, G1).
+    seed: Option<u32>,
+    pole: Point,
+    radius: f64,
+}
+
+/// What one step drew.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Step {
+    /// The procedure drawn.
+    pub(super) procedure: Option<u32>,
+    /// The visible lines, inside the region drawn in.
+    pub(super) strokes: Vec<BezPath>,
+    /// The black parts, finished.
+    pub(super) black: Vec<Region>,
+}
+
+/// The loop's state.
+pub(super) struct Filling {
+    areas: Vec<Option<Area>>,
+    /// By inscribed radius (as ordered bits, radii being ≥ 0), the oldest
+    /// first among equals.
+    queue: BinaryHeap<(u64, Reverse<usize>)>,
+    allowed: Allowed,
+    /// Regions narrower than this are left white.
+    smallest: f64,
+    scale: f64,
+    wobble: f64,
+    pen: f64,
+}
+
+impl Filling {
+    /// The blank `region`, split by `lines` (drawn as the first step).
+    pub(super) fn new(
+        region: &Region,
+        lines: Vec<BezPath>,
+        allowed: Allowed,
+        (scale, smallest, wobble, pen): (f64, f64, f64, f64),
+    ) -> Result<(Filling, Step)> {
+        let mut filling = Filling {
+            areas: Vec::new(),
+            queue: BinaryHeap::new(),
+            allowed,
+            smallest,
+            scale,
+            wobble,
+            pen,
+        };
+        let marks: Vec<Mark> = lines
+            .into_iter()
+            .map(|path| Mark {
+                path,
+                paint: Paint::Line,
+            })
+            .collect();
+        let composed = compose(region, &marks, pen, flattening(pen))?;
+        for piece in composed.white {
+            filling.push(piece.region, None);
+        }
+        let step = Step {
+            procedure: None,
+            strokes: composed.strokes,
+            black: composed.black,
+        };
+        Ok((filling, step))
+    }
+
+    fn push(&mut self, region: Region, seed: Option<u32>) {
+        let precision = precision(&region, self.pen);
+        let Some((pole, radius)) = pole_of_inaccessibility(&region, precision) else {
+            return;
+        };
+        if radius < self.smallest {
+            return;
+        }
+        let id = self.areas.len();
+        self.areas.push(Some(Area {
+            region,
+            seed,
+            pole,
+            radius,
+        }));
+        self.queue.push((radius.to_bits(), Reverse(id)));
+    }
+
+    /// The region the next automatic step will draw in, and the radius
+    /// of its largest inscribed circle.
+    #[cfg(test)]
+    pub(super) fn widest(&self) -> Option<(Region, f64)> {
+        let mut queue = self.queue.clone();
+        while let Some((_, Reverse(id))) = queue.pop() {
+            if let Some(a) = &self.areas[id] {
+                return Some((a.region.clone(), a.radius));
+            }
+        }
+        None
+    }
+
+    /// The white regions left that are wide enough to draw in.
+    pub(super) fn open(&self) -> usize {
+        self.areas.iter().flatten().count()
+    }
+
+    /// One automatic step: the widest region gets the procedure its seed
+    /// names. `None` when no region is left.
+    pub(super) fn step(&mut self, rng: &mut RandomStream) -> Result<Option<Step>> {
+        while let Some((_, Reverse(id))) = self.queue.pop() {
+            if let Some(area) = self.areas[id].take() {
+                let procedure = match area.seed {
+                    Some(p) if self.allowed.procedures.contains(&p) => p,
+                    // A seed left out: an allowed one of the same group.
+                    Some(p) => self.allowed.pick(&[p], rng),
+                    None => self.allowed.pick(G1, rng),
+                };
+                return self.draw_in(area, procedure, rng).map(Some);
+            }
+        }
+        Ok(None)
+    }
+
+    /// A manual step: the region holding `at` gets `procedure`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] (field `at`) when no white region holds the
+    /// point.
+    pub(super) fn step_at(
+        &mut self,
+        at: Point,
+        procedure: u32,
+        rng: &mut RandomStream,
+    ) -> Result<Step> {
+        let id = self
+            .areas
+            .iter()
+            .position(|a| a.as_ref().is_some_and(|a| a.region.contains(at)))
+            .ok_or_else(|| {
+                Error::invalid(
+                    "at",
+                    format!(
+                        "({}, {}) lies in no white region wide enough to draw in (it may be \
+                         on a line, in black, or in a region narrower than `smallest`)",
+                        at.x, at.y
+                    ),
+                )
+            })?;
+        let area = self.areas[id].take().expect("found alive");
+        self.draw_in(area, procedure, rng)
+    }
+
+    fn draw_in(&mut self, area: Area, procedure: u32, rng: &mut RandomStream) -> Result<Step> {
+        let b = area.region.bounds();
+        let target = Target {
+            region: &area.region,
+            pole: area.pole,
+            radius: area.radius,
+            size: self.scale * b.area().sqrt(),
+            wobble: self.wobble,
+            pen: self.pen,
+        };
+        let drawn = draw(procedure, &target, &self.allowed, rng)?;
+        let composed = compose(&area.region, &drawn.marks, self.pen, flattening(self.pen))?;
+        for piece in composed.white {
+            // Inside a white mark: the seed the mark was given. Elsewhere
+            // the piece keeps its region's seed, as its pixels would in the
+            // paper's frame buffer (the blank page's stays "any").
+            let seed = piece.inside.and_then(|i| drawn.seeds[i]).or(area.seed);
+            self.push(piece.region, seed);
+        }
+        Ok(Step {
+            procedure: Some(procedure),
+            strokes: composed.strokes,
+            black: composed.black,
+        })
+    }
+}
+
+/// How closely white pieces, black parts and ink follow the curves (mm):
+/// an eighth of the pen's width, far inside the line that covers the
+/// edge, and a quarter of the vertices the output tolerance would take.
+fn flattening(pen: f64) -> f64 {
+    pen / 8.0
+}
+
+/// How exactly a region's widest inscribed circle is found (mm): to a
+/// quarter of the pen, or 0.5 % of the region's smaller side when that is
+/// more — enough to tell which region is widest, and the search costs
+/// grow with the inverse square of it.
+pub(super) fn precision(region: &Region, pen: f64) -> f64 {
+    let b = region.bounds();
+    (pen / 4.0).max(0.005 * b.width().min(b.height()))
+}

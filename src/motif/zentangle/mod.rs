@@ -1,0 +1,159 @@
+//! The `zentangle` family (SPEC §2): the filling process of the zentangle
+//! paper in exact vector form (see [`ZentangleSpec`]).
+//!
+//! - `element`: the 26 elements (basic and compound shapes) as marks in
+//!   painter's order, and their hand-drawn deformation;
+//! - `placement`: the placement templates MR, MT, MS, MA, MC and ML of
+//!   symmetric patterns;
+//! - `pattern`: the region-dependent patterns;
+//! - `procedure`: the twenty procedures of the paper's table 1 and their
+//!   seed groups;
+//! - `compose`: what a procedure's marks do to a white region — the
+//!   visible lines, the white pieces left and the black area;
+//! - `filling`: the loop.
+//!
+//! Each step is a group `<layer>.<table>.step-K-pP` (step K drew
+//! procedure P) of its lines (`line-I`) and black parts (`black-I`,
+//! hatched or filled as `black` says); `step-0-lines` holds the
+//! description's own `lines`.
+
+mod compose;
+mod element;
+mod filling;
+mod pattern;
+mod placement;
+mod procedure;
+
+use kurbo::{BezPath, Point};
+
+use super::region::region;
+use super::Context;
+use crate::error::{Error, Result};
+use crate::scene::{Color, Group, Style};
+use crate::spec::{Black, ZentangleSpec, ELEMENTS, PROCEDURES};
+use element::Shape;
+use filling::{Filling, Step};
+use procedure::Allowed;
+
+/// Builds a zentangle fill into a group with id `group_id`.
+///
+/// # Errors
+/// A region that encloses nothing; a manual step whose point lies in no
+/// white region; the path budget.
+pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
+    let region = region(&spec.region, cx)?;
+    let mut rng = cx.stream(group_id);
+    let allowed = Allowed {
+        procedures: spec
+            .procedures
+            .clone()
+            .unwrap_or_else(|| (0..PROCEDURES).collect()),
+        elements: spec.elements.as_ref().map_or_else(
+            || Shape::ALL.to_vec(),
+            |names| names.iter().filter_map(|n| Shape::from_name(n)).collect(),
+        ),
+    };
+    debug_assert!(ELEMENTS.iter().all(|n| Shape::from_name(n).is_some()));
+    let lines: Vec<BezPath> = spec.lines.iter().map(|l| polyline(l)).collect();
+    let pen = cx.pen_width();
+    let (mut filling, first) = Filling::new(
+        &region,
+        lines,
+        allowed,
+        (spec.scale, spec.smallest, spec.wobble, pen),
+    )?;
+    if filling.open() == 0 && !region.is_empty() {
+        return Err(Error::invalid(
+            cx.field("region"),
+            format!(
+                "is too small to draw in: no part of it holds a circle of radius `smallest` \
+                 = {} mm",
+                spec.smallest
+            ),
+        ));
+    }
+    let mut group = Group::new(group_id);
+    let mut k = 0;
+    emit(spec, &mut group, group_id, k, first, cx)?;
+    for (i, m) in spec.manual.iter().enumerate() {
+        k += 1;
+        let at = Point::new(m.at[0], m.at[1]);
+        let step = filling
+            .step_at(at, m.procedure, &mut rng)
+            .map_err(|e| match e {
+                Error::Invalid { message, .. } => {
+                    Error::invalid(cx.field(&format!("manual[{i}].at")), message)
+                }
+                other => other,
+            })?;
+        emit(spec, &mut group, group_id, k, step, cx)?;
+        cx.advance(1);
+    }
+    for _ in 0..spec.steps {
+        let Some(step) = filling.step(&mut rng)? else {
+            break;
+        };
+        k += 1;
+        emit(spec, &mut group, group_id, k, step, cx)?;
+        cx.advance(1);
+    }
+    cx.note(
+        group_id,
+        format!(
+            "{k} steps; {} white regions wide enough to draw in are left",
+            filling.open()
+        ),
+    );
+    Ok(group)
+}
+
+/// Puts a step's lines and black parts into the group, as `step-K`.
+fn emit(
+    spec: &ZentangleSpec,
+    group: &mut Group,
+    group_id: &str,
+    k: usize,
+    step: Step,
+    cx: &mut Context<'_>,
+) -> Result<()> {
+    if step.strokes.is_empty() && step.black.is_empty() {
+        return Ok(());
+    }
+    let id = match step.procedure {
+        Some(p) => format!("{group_id}.step-{k}-p{p}"),
+        None => format!("{group_id}.step-{k}-lines"),
+    };
+    cx.take_paths(step.strokes.len() + step.black.len(), || {
+        format!("zentangle {id}")
+    })?;
+    let mut part = Group::new(&id);
+    for (i, region) in step.black.into_iter().enumerate() {
+        let style = Style {
+            fill: Some(Color::BLACK),
+            hatch: (spec.black == Black::Hatch).then_some(spec.hatch),
+            fill_only: false,
+        };
+        part.push_path(format!("{id}.black-{i}"), region.into_path(), style);
+    }
+    for (i, path) in step.strokes.into_iter().enumerate() {
+        part.push_path(format!("{id}.line-{i}"), path, Style::default());
+    }
+    group.push_group(part);
+    Ok(())
+}
+
+/// A polyline through `points`.
+fn polyline(points: &[[f64; 2]]) -> BezPath {
+    let mut path = BezPath::new();
+    for (i, &[x, y]) in points.iter().enumerate() {
+        if i == 0 {
+            path.move_to((x, y));
+        } else {
+            path.line_to((x, y));
+        }
+    }
+    path
+}
+
+#[cfg(test)]
+mod tests;

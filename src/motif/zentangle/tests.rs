@@ -1,0 +1,175 @@
+//! The zentangle family: the loop's invariants (strokes stay in their
+//! region, the widest white circle never grows), what the description
+//! allows, determinism and errors.
+
+use kurbo::{BezPath, PathEl, Point, Rect};
+
+use super::filling::Filling;
+use super::procedure::{seed_group, Allowed};
+use super::Shape;
+use crate::geom::offset::offset;
+use crate::geom::region::Region;
+use crate::project::build_scene;
+use crate::rng::Seed;
+use crate::scene::Scene;
+use crate::spec::{Format, SceneSpec};
+
+fn text(table: &str) -> String {
+    format!(
+        "version = 1\nseed = 5\npage = {{ size = \"A5\", margin = 10 }}\n\
+         [[layers]]\nname = \"l\"\n[[layers.zentangle]]\n{table}"
+    )
+}
+
+fn scene(table: &str) -> Scene {
+    let text = text(table);
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    build_scene(&spec).unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+fn error(table: &str) -> String {
+    let text = text(table);
+    match SceneSpec::parse(&text, Format::Toml).and_then(|s| build_scene(&s)) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The procedure each step group drew (`…step-K-pP`).
+fn procedures(s: &Scene) -> Vec<u32> {
+    let mut out = Vec::new();
+    s.layers[0]
+        .content
+        .visit_paths(kurbo::Affine::IDENTITY, &mut |p, _| {
+            let step = p.id.split('.').nth(2).unwrap_or("");
+            if let Some(proc) = step.rsplit_once("-p").and_then(|(_, n)| n.parse().ok()) {
+                if out.last() != Some(&proc) || !p.id.ends_with("-0") {
+                    out.push(proc);
+                }
+            }
+        });
+    out
+}
+
+fn points(path: &BezPath) -> Vec<Point> {
+    let mut out = Vec::new();
+    kurbo::flatten(path.iter(), 0.05, |el| match el {
+        PathEl::MoveTo(p) | PathEl::LineTo(p) => out.push(p),
+        _ => {}
+    });
+    out
+}
+
+fn all() -> Allowed {
+    Allowed {
+        procedures: (0..20).collect(),
+        elements: Shape::ALL.to_vec(),
+    }
+}
+
+#[test]
+fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
+    let page = Region::from_rect(Rect::new(0.0, 0.0, 150.0, 200.0)).unwrap();
+    let pen = 0.3;
+    let (mut filling, _) = Filling::new(&page, Vec::new(), all(), (0.35, 1.5, 0.6, pen)).unwrap();
+    let mut rng = Seed(11).derive("t").stream();
+    let mut last = f64::INFINITY;
+    for k in 0..60 {
+        let Some((region, radius)) = filling.widest() else {
+            break;
+        };
+        // Radii are found to within `precision`.
+        let slack = super::filling::precision(&region, pen);
+        assert!(radius <= last + slack, "step {k}: {radius} after {last}");
+        last = radius;
+        let step = filling.step(&mut rng).unwrap().unwrap();
+        // Within the pen's half width (and the flattening) of the region.
+        let reach = offset(&region, pen / 2.0 + 0.02, 0.01).unwrap();
+        for stroke in &step.strokes {
+            for p in points(stroke) {
+                assert!(reach.contains(p), "step {k}: {p:?} outside its region");
+            }
+        }
+        for b in &step.black {
+            assert!(b.area() <= region.area() + 1e-6);
+        }
+    }
+}
+
+#[test]
+fn only_allowed_procedures_are_drawn_and_seeds_follow_their_groups() {
+    // Triangles hold circles (G3), circles squares (G5), squares
+    // triangles (G4): with only 0–2 allowed, every step is one of them.
+    let s = scene("steps = 30\nprocedures = [0, 1, 2]\nwobble = 0\n");
+    let drawn = procedures(&s);
+    assert!(drawn.len() >= 10, "{drawn:?}");
+    assert!(drawn.iter().all(|p| [0, 1, 2].contains(p)), "{drawn:?}");
+    assert_eq!(seed_group(0), Some(&[2][..]));
+    // Line-only procedures make no seeds.
+    for p in [3, 11, 12, 14, 16, 17, 18] {
+        assert_eq!(seed_group(p), None, "{p}");
+    }
+    // One procedure only: contour lines every time.
+    let s = scene("steps = 8\nprocedures = [16]\n");
+    assert!(procedures(&s).iter().all(|&p| p == 16));
+}
+
+#[test]
+fn manual_steps_come_first_and_name_their_region() {
+    let s = scene("steps = 0\nmanual = [{ at = [60, 90], procedure = 18 }, { at = [5, 5], procedure = 16 }]\n");
+    let drawn = procedures(&s);
+    assert_eq!(drawn.first(), Some(&18), "{drawn:?}");
+    let e = error("steps = 0\nmanual = [{ at = [60, 90], procedure = 1 }, { at = [500, 500], procedure = 16 }]\n");
+    assert!(
+        e.contains("layers[0].zentangle[0].manual[1].at: (500, 500) lies in no white region"),
+        "{e}"
+    );
+}
+
+#[test]
+fn user_lines_split_the_page_first() {
+    let s = scene("steps = 0\nlines = [[[0, 95], [128, 95]]]\n");
+    let mut ids = Vec::new();
+    s.layers[0]
+        .content
+        .visit_paths(kurbo::Affine::IDENTITY, &mut |p, _| ids.push(p.id.clone()));
+    assert_eq!(ids, ["l.zentangle-0.step-0-lines.line-0"]);
+}
+
+#[test]
+fn the_seed_decides_everything() {
+    let table = "steps = 25\n";
+    let a = crate::output::path_dump(&scene(table), 4);
+    assert_eq!(a, crate::output::path_dump(&scene(table), 4));
+    let other = text(table).replace("seed = 5", "seed = 6");
+    let b = build_scene(&SceneSpec::parse(&other, Format::Toml).unwrap()).unwrap();
+    assert_ne!(a, crate::output::path_dump(&b, 4));
+}
+
+#[test]
+fn bad_tables_are_refused_with_their_field() {
+    for (table, expected) in [
+        (
+            "procedures = [20]\n",
+            "layers[0].zentangle[0].procedures[0]: must be between 0 and 19",
+        ),
+        ("procedures = []\n", "layers[0].zentangle[0].procedures: allows nothing"),
+        (
+            "elements = [\"xx\"]\n",
+            "layers[0].zentangle[0].elements[0]: unknown element `xx`",
+        ),
+        ("steps = 9000\n", "layers[0].zentangle[0].steps: must be between 0 and 5000"),
+        (
+            "smallest = 50\n[layers.zentangle.region]\ncircle = { centre = [50, 50], radius = 20 }\n",
+            "layers[0].zentangle[0].region: is too small to draw in",
+        ),
+        (
+            "lines = [[[0, 0]]]\n",
+            "layers[0].zentangle[0].lines[0]",
+        ),
+        ("wobble = nan\n", "layers[0].zentangle[0].wobble"),
+    ] {
+        let e = error(table);
+        assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
+    }
+}
