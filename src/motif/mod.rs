@@ -21,6 +21,8 @@ mod flow;
 mod kimono;
 mod paths;
 mod region;
+#[cfg(test)]
+mod test_scene;
 mod tree;
 mod voronoi;
 mod zentangle;

@@ -6,6 +6,7 @@ use kurbo::{BezPath, Point, Shape};
 use crate::error::Error;
 use crate::geom::path_length;
 use crate::geom::region::Region;
+use crate::motif::test_scene;
 use crate::project::build_scene;
 use crate::scene::Scene;
 use crate::spec::{Format, SceneSpec};
@@ -15,24 +16,15 @@ const W: f64 = 128.0;
 const H: f64 = 190.0;
 
 fn text(table: &str) -> String {
-    format!(
-        "version = 1\nseed = 5\npage = {{ size = \"A5\", margin = 10 }}\n\
-         [[layers]]\nname = \"l\"\n[[layers.voronoi]]\n{table}"
-    )
+    test_scene::text("voronoi", table)
 }
 
 fn scene(table: &str) -> Scene {
-    let text = text(table);
-    let spec = SceneSpec::parse(&text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    build_scene(&spec).unwrap_or_else(|e| panic!("{e}\n{text}"))
+    test_scene::scene("voronoi", table)
 }
 
 fn error(table: &str) -> String {
-    let text = text(table);
-    match SceneSpec::parse(&text, Format::Toml).and_then(|s| build_scene(&s)) {
-        Ok(_) => panic!("accepted:\n{text}"),
-        Err(e) => e.to_string(),
-    }
+    test_scene::error("voronoi", table)
 }
 
 /// The paths of one kind (`cells`, `inset`, …), in layer coordinates.

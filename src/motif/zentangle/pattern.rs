@@ -46,11 +46,7 @@ pub(super) fn contour_lines(region: &Region, gap: f64) -> Result<Vec<Mark>> {
 /// corners, then the polygon through points a fixed fraction along each
 /// side of the previous one, repeated inwards: the whirl.
 pub(super) fn paradox_whirl(region: &Region, corners: usize) -> Vec<Mark> {
-    let Some(outline) = region
-        .polygons(TOLERANCE)
-        .into_iter()
-        .max_by(|a, b| polygon_area(a).abs().total_cmp(&polygon_area(b).abs()))
-    else {
+    let Some(outline) = outermost(region) else {
         return Vec::new();
     };
     let polygon = coarse(&outline, corners);
@@ -137,11 +133,7 @@ pub(super) fn along_border(
     size: f64,
     pick: &mut dyn FnMut(usize) -> (Shape, Paint),
 ) -> Vec<Mark> {
-    let Some(outline) = region
-        .polygons(TOLERANCE)
-        .into_iter()
-        .max_by(|a, b| polygon_area(a).abs().total_cmp(&polygon_area(b).abs()))
-    else {
+    let Some(outline) = outermost(region) else {
         return Vec::new();
     };
     let n = outline.len();
@@ -221,6 +213,14 @@ fn resampled(region: &Region, step: f64) -> Result<Region> {
         path.close_path();
     }
     Region::new(path, crate::geom::region::FillRule::EvenOdd)
+}
+
+/// The region's largest contour (its outermost outline), flattened.
+fn outermost(region: &Region) -> Option<Vec<Point>> {
+    region
+        .polygons(TOLERANCE)
+        .into_iter()
+        .max_by(|a, b| polygon_area(a).abs().total_cmp(&polygon_area(b).abs()))
 }
 
 /// Signed area (positive clockwise on the page, y down).

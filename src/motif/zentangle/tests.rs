@@ -9,30 +9,22 @@ use super::procedure::{seed_group, Allowed};
 use super::Shape;
 use crate::geom::offset::offset;
 use crate::geom::region::Region;
+use crate::motif::test_scene;
 use crate::project::build_scene;
 use crate::rng::Seed;
 use crate::scene::Scene;
 use crate::spec::{Format, SceneSpec};
 
 fn text(table: &str) -> String {
-    format!(
-        "version = 1\nseed = 5\npage = {{ size = \"A5\", margin = 10 }}\n\
-         [[layers]]\nname = \"l\"\n[[layers.zentangle]]\n{table}"
-    )
+    test_scene::text("zentangle", table)
 }
 
 fn scene(table: &str) -> Scene {
-    let text = text(table);
-    let spec = SceneSpec::parse(&text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    build_scene(&spec).unwrap_or_else(|e| panic!("{e}\n{text}"))
+    test_scene::scene("zentangle", table)
 }
 
 fn error(table: &str) -> String {
-    let text = text(table);
-    match SceneSpec::parse(&text, Format::Toml).and_then(|s| build_scene(&s)) {
-        Ok(_) => panic!("accepted:\n{text}"),
-        Err(e) => e.to_string(),
-    }
+    test_scene::error("zentangle", table)
 }
 
 /// The procedure each step group drew (`…step-K-pP`).

@@ -1,0 +1,31 @@
+//! Scenes for the families' tests: a one-layer A5 description (10 mm
+//! margins, seed 5) around one table of a family, built or refused.
+
+use crate::project::build_scene;
+use crate::scene::Scene;
+use crate::spec::{Format, SceneSpec};
+
+/// The description of one `[[layers.<family>]]` table with `table`'s
+/// lines in it.
+pub(crate) fn text(family: &str, table: &str) -> String {
+    format!(
+        "version = 1\nseed = 5\npage = {{ size = \"A5\", margin = 10 }}\n\
+         [[layers]]\nname = \"l\"\n[[layers.{family}]]\n{table}"
+    )
+}
+
+/// The scene of that description; panics with the text when it fails.
+pub(crate) fn scene(family: &str, table: &str) -> Scene {
+    let text = text(family, table);
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    build_scene(&spec).unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
+/// The error that description gives; panics when it is accepted.
+pub(crate) fn error(family: &str, table: &str) -> String {
+    let text = text(family, table);
+    match SceneSpec::parse(&text, Format::Toml).and_then(|s| build_scene(&s)) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
