@@ -50,6 +50,9 @@ pub const ALL: &[Template] = templates![
     "zentangle-10",
     "zentangle-50",
     "zentangle-200",
+    "zentangle-string",
+    "zentangle-ring",
+    "zentangle-geometric",
     "delaunay-lowpoly",
 ];
 

@@ -58,11 +58,23 @@ fn every_pattern_adds_a_layer_and_keeps_the_input() {
     let plain = read(&dir, "plain.svg");
     let input_layer = pen_layer(&plain, 1);
     assert!(input_layer.contains("inkscape:label=\"1"), "{input_layer}");
-    for pattern in ["voronoi", "delaunay", "stipple", "tour", "glass"] {
+    for pattern in [
+        "voronoi",
+        "delaunay",
+        "stipple",
+        "tour",
+        "glass",
+        "zentangle",
+    ] {
         let out = format!("{pattern}.svg");
+        let size: &[&str] = if pattern == "zentangle" {
+            &["--steps", "12"]
+        } else {
+            &["--spacing", "6"]
+        };
         moyo(&dir)
             .args(["fill", "frame.svg", "-o", &out, "--pattern", pattern])
-            .args(["--spacing", "6"])
+            .args(size)
             .assert()
             .success()
             .stderr(
@@ -135,7 +147,9 @@ fn fill_help_lists_the_patterns() {
         "stipple",
         "tour",
         "glass",
+        "zentangle",
         "--spacing",
+        "--steps",
     ] {
         assert!(help.contains(word), "{word}: {help}");
     }
@@ -162,6 +176,14 @@ fn bad_input_and_options_fail_and_write_nothing() {
         ),
         (&["frame.svg", "--points", "0"], "error: --points: "),
         (&["frame.svg", "--relax", "1001"], "error: --relax: "),
+        (
+            &["frame.svg", "--pattern", "zentangle", "--spacing", "3"],
+            "error: --spacing: places the sites",
+        ),
+        (
+            &["frame.svg", "--steps", "3"],
+            "error: --steps: counts zentangle steps",
+        ),
         (
             &["frame.svg", "--density", "1 +"],
             "error: --density: is not a formula",

@@ -24,6 +24,8 @@ pub(crate) enum PatternArg {
     Tour,
     /// Each cell shrunk and rounded, a closed shape each: stained glass.
     Glass,
+    /// A zentangle, --steps filling steps (default 50).
+    Zentangle,
 }
 
 impl PatternArg {
@@ -34,6 +36,7 @@ impl PatternArg {
             PatternArg::Stipple => FillPattern::Stipple,
             PatternArg::Tour => FillPattern::Tour,
             PatternArg::Glass => FillPattern::Glass,
+            PatternArg::Zentangle => FillPattern::Zentangle,
         }
     }
 }
@@ -76,6 +79,9 @@ pub(crate) struct FillArgs {
     /// image's when both are given.
     #[arg(long, value_name = "FORMULA", allow_hyphen_values = true)]
     density: Option<String>,
+    /// Zentangle: filling steps (0–5000; default 50).
+    #[arg(long, value_name = "N")]
+    steps: Option<u32>,
     /// Pen of the fill (1–999); default the smallest number the input
     /// does not use.
     #[arg(long, value_name = "N")]
@@ -110,6 +116,7 @@ impl FillArgs {
         job.lbg = self.lbg;
         job.converge = self.converge;
         job.density = self.density.clone();
+        job.steps = self.steps;
         job.pen = self.pen;
         job.dot = self.dot;
         if let Some(path) = &self.image {
@@ -125,8 +132,9 @@ impl FillArgs {
 /// The library names a bad option by its field and the drawing `input`;
 /// here they are the command's option and the input file.
 fn on_the_command_line(e: moyo::Error, input: &Path) -> CliError {
-    const OPTIONS: [&str; 8] = [
-        "seed", "spacing", "points", "relax", "converge", "density", "pen", "dot",
+    const OPTIONS: [&str; 11] = [
+        "seed", "spacing", "points", "relax", "converge", "density", "pen", "dot", "steps", "lbg",
+        "image",
     ];
     CliError::Message(match e {
         moyo::Error::Invalid { field, message, .. } if field == "input" => {

@@ -1,12 +1,13 @@
-//! Filling any drawing (`moyo fill`): a pattern of the Voronoi family inside
-//! the closed shapes of a drawing, on a pen of its own, the drawing's own
-//! lines kept as they are.
+//! Filling any drawing (`moyo fill`): a pattern of the Voronoi family or a
+//! zentangle inside the closed shapes of a drawing, on a pen of its own,
+//! the drawing's own lines kept as they are.
 //!
 //! [`fill_scene`] takes the closed subpaths of the drawing's plotted layers
 //! as one region (even-odd: a shape inside a shape is a hole), describes one
-//! `[[layers.voronoi]]` table over it in code, and has the family's own
-//! generator build it — so a fill draws what that table would in a scene
-//! description. The layer it makes is added to the drawing with a pen.
+//! `[[layers.voronoi]]` or `[[layers.zentangle]]` table over it in code, and
+//! has the family's own generator build it — so a fill draws what that
+//! table would in a scene description. The layer it makes is added to the
+//! drawing with a pen.
 
 use std::collections::BTreeSet;
 
@@ -24,7 +25,7 @@ use crate::scene::{Color, Group, Layer, Node, Pen, Scene, Stats};
 use crate::spec::{
     Distribution, Draw, LayerSpec, LimbSpec, LimitsSpec, MarginSpec, OutputSpec, PageSpec,
     PaperSize, PenSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec, SitesSpec,
-    ValidSpec, VoronoiSpec, FORMAT_VERSION,
+    ValidSpec, VoronoiSpec, ZentangleSpec, FORMAT_VERSION,
 };
 
 /// What a fill draws: one of the ways the Voronoi family draws its sites.
@@ -46,16 +47,20 @@ pub enum FillPattern {
     /// Each cell as its own closed shape, 0.8 mm in from its edges, corners
     /// rounded by 1 mm: stained glass.
     Glass,
+    /// A zentangle: [`FillJob::steps`] steps of the zentangle family's
+    /// filling loop (`[[layers.zentangle]]`) inside the shapes.
+    Zentangle,
 }
 
 impl FillPattern {
     /// Every pattern.
-    pub const ALL: [FillPattern; 5] = [
+    pub const ALL: [FillPattern; 6] = [
         FillPattern::Voronoi,
         FillPattern::Delaunay,
         FillPattern::Stipple,
         FillPattern::Tour,
         FillPattern::Glass,
+        FillPattern::Zentangle,
     ];
 
     /// Its name on the command line (`glass`).
@@ -66,6 +71,7 @@ impl FillPattern {
             FillPattern::Stipple => "stipple",
             FillPattern::Tour => "tour",
             FillPattern::Glass => "glass",
+            FillPattern::Zentangle => "zentangle",
         }
     }
 
@@ -75,17 +81,23 @@ impl FillPattern {
     pub fn default_relax(self) -> u32 {
         match self {
             FillPattern::Stipple | FillPattern::Tour => 10,
-            FillPattern::Voronoi | FillPattern::Delaunay | FillPattern::Glass => 0,
+            FillPattern::Voronoi
+            | FillPattern::Delaunay
+            | FillPattern::Glass
+            | FillPattern::Zentangle => 0,
         }
     }
 
-    fn draw(self) -> Draw {
+    /// What the Voronoi family draws for it (`None`: not a Voronoi
+    /// pattern).
+    fn draw(self) -> Option<Draw> {
         match self {
-            FillPattern::Voronoi => Draw::Cells,
-            FillPattern::Delaunay => Draw::Delaunay,
-            FillPattern::Stipple => Draw::Sites,
-            FillPattern::Tour => Draw::Tour,
-            FillPattern::Glass => Draw::Inset,
+            FillPattern::Voronoi => Some(Draw::Cells),
+            FillPattern::Delaunay => Some(Draw::Delaunay),
+            FillPattern::Stipple => Some(Draw::Sites),
+            FillPattern::Tour => Some(Draw::Tour),
+            FillPattern::Glass => Some(Draw::Inset),
+            FillPattern::Zentangle => None,
         }
     }
 }
@@ -122,6 +134,9 @@ pub struct FillJob {
     /// across the shapes' bounding box; see
     /// [`crate::geom::density::Formula`]), times the image's if both.
     pub density: Option<String>,
+    /// With [`FillPattern::Zentangle`] only: filling steps (0–5,000,
+    /// default 50).
+    pub steps: Option<u32>,
     /// The pen (1–999). Default: the smallest number the drawing does not
     /// use.
     pub pen: Option<u32>,
@@ -149,6 +164,7 @@ impl FillJob {
         lbg: false,
         converge: None,
         density: None,
+        steps: None,
         pen: None,
         dot: None,
         image: None,
@@ -206,6 +222,12 @@ impl FillJob {
     /// This job with sites denser where `formula` is high.
     pub fn with_density(mut self, formula: impl Into<String>) -> FillJob {
         self.density = Some(formula.into());
+        self
+    }
+
+    /// This job's zentangle running `steps` steps.
+    pub const fn with_steps(mut self, steps: u32) -> FillJob {
+        self.steps = Some(steps);
         self
     }
 
@@ -275,8 +297,8 @@ const INPUT: &str = "input";
 /// The name the density image goes by in the fill's description.
 const IMAGE: &str = "image";
 
-/// The field path of the one table of the description.
-const TABLE: &str = "layers[0].voronoi[0]";
+/// The field paths of the description's one table (whichever family).
+const TABLES: [&str; 2] = ["layers[0].voronoi[0]", "layers[0].zentangle[0]"];
 
 /// The fill's colour when its pen is new: a blue-green that stands apart
 /// from black lines.
@@ -316,6 +338,7 @@ const FILL_COLOR: Color = Color::rgb(0x1f, 0x6f, 0x8b);
 /// both `spacing` and `points`, or a `dot` for another pattern than
 /// stipple.
 pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
+    check_options(job)?;
     if job.spacing.is_some() && job.points.is_some() {
         return Err(Error::invalid(
             "points",
@@ -346,7 +369,10 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     if let Some(image) = &job.image {
         library.add_image(IMAGE, image.clone());
     }
-    let built = build_scene_with_progress(&spec, &library, &mut |_| {}).map_err(by_option)?;
+    let mut built = build_scene_with_progress(&spec, &library, &mut |_| {}).map_err(by_option)?;
+    // Black parts of a zentangle are hatched by its own pen, as in a
+    // render: a fill a pen cannot draw would be lost on the plotter.
+    crate::plot::hatch::run_own(&mut built)?;
     let mut layers = built.layers;
     let mut layer = layers.pop().ok_or_else(|| Error::Geometry {
         operation: "filling: the description built no layer".into(),
@@ -376,6 +402,38 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     })
 }
 
+/// Options that do not apply to the job's pattern are refused by name:
+/// the sites' options for a zentangle, `steps` for the others.
+fn check_options(job: &FillJob) -> Result<()> {
+    let zentangle = job.pattern == FillPattern::Zentangle;
+    let sites = [
+        ("spacing", job.spacing.is_some()),
+        ("points", job.points.is_some()),
+        ("relax", job.relax.is_some()),
+        ("lbg", job.lbg),
+        ("converge", job.converge.is_some()),
+        ("density", job.density.is_some()),
+        ("image", job.image.is_some()),
+    ];
+    if zentangle {
+        if let Some((option, _)) = sites.iter().find(|(_, set)| *set) {
+            return Err(Error::invalid(
+                *option,
+                "places the sites of the Voronoi patterns; the zentangle pattern has none",
+            ));
+        }
+    } else if job.steps.is_some() {
+        return Err(Error::invalid(
+            "steps",
+            format!(
+                "counts zentangle steps; the {} pattern has none",
+                job.pattern.name()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The description of the fill: the drawing's page (margins 0, so the
 /// layer's coordinates are the drawing's), one layer with one table whose
 /// region is the drawing's closed shapes.
@@ -403,15 +461,16 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         spacing: sites.spacing.or(job.spacing),
         ..sites
     };
+    let region = RegionSpec {
+        svg: Some(INPUT.into()),
+        ..RegionSpec::default()
+    };
     let glass = job.pattern == FillPattern::Glass;
-    let table = VoronoiSpec {
+    let voronoi = job.pattern.draw().map(|draw| VoronoiSpec {
         // One id for every pattern: the same seed and spacing give the
         // same sites, whichever pattern draws them.
         id: Some("pattern".into()),
-        region: RegionSpec {
-            svg: Some(INPUT.into()),
-            ..RegionSpec::default()
-        },
+        region: region.clone(),
         sites,
         relax: job.relax.unwrap_or(job.pattern.default_relax()),
         relaxation: if job.lbg {
@@ -420,11 +479,17 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
             RelaxationMethod::Lloyd
         },
         converge: job.converge,
-        draw: vec![job.pattern.draw()],
+        draw: vec![draw],
         inset: if glass { 0.8 } else { 1.0 },
         round: if glass { 1.0 } else { 0.0 },
         dot: job.dot.unwrap_or(0.3),
-    };
+    });
+    let zentangle = (job.pattern == FillPattern::Zentangle).then(|| ZentangleSpec {
+        id: Some("pattern".into()),
+        region,
+        steps: job.steps.unwrap_or(50),
+        ..ZentangleSpec::default()
+    });
     SceneSpec {
         version: FORMAT_VERSION,
         title: None,
@@ -456,8 +521,8 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
             trees: Vec::new(),
             background: None,
             paths: Vec::new(),
-            voronoi: vec![table],
-            zentangle: Vec::new(),
+            voronoi: voronoi.into_iter().collect(),
+            zentangle: zentangle.into_iter().collect(),
         }],
         plot: PlotOptions::default(),
         adjust: Vec::new(),
@@ -469,13 +534,17 @@ fn by_option(e: Error) -> Error {
     let Error::Invalid { at, field, message } = e else {
         return e;
     };
-    let table = field.strip_prefix(TABLE).and_then(|f| f.strip_prefix('.'));
+    let table = TABLES
+        .iter()
+        .find_map(|t| field.strip_prefix(t))
+        .and_then(|f| f.strip_prefix('.'));
     let option = match (field.as_str(), table) {
         ("seed", _) => "seed",
         (f, _) if f.starts_with("pens[") => "pen",
         (_, Some("sites.spacing")) => "spacing",
         (_, Some("sites.count")) => "points",
         (_, Some("relax")) => "relax",
+        (_, Some("steps")) => "steps",
         (_, Some("converge")) => "converge",
         (_, Some("sites.density")) => "density",
         (_, Some("dot")) => "dot",

@@ -56,7 +56,7 @@ pub struct ZentangleSpec {
     /// How much each element is deformed by hand (the free-form
     /// deformation of SPEC §2.2, as a fraction of the paper's amount:
     /// control points move up to half a lattice cell × this; 0–2,
-    /// default 1).
+    /// default 0.6 — the paper's full amount turns circles into blobs).
     #[serde(default = "default_wobble")]
     pub wobble: f64,
     /// Lines (polylines, mm, ≥ 2 points each) drawn first: they split the
@@ -130,11 +130,32 @@ fn default_smallest() -> f64 {
 }
 
 fn default_wobble() -> f64 {
-    1.0
+    0.6
 }
 
 fn default_hatch() -> f64 {
     0.5
+}
+
+impl Default for ZentangleSpec {
+    /// The page, 50 steps, every procedure and element, the defaults of
+    /// each field.
+    fn default() -> ZentangleSpec {
+        ZentangleSpec {
+            id: None,
+            region: RegionSpec::default(),
+            steps: default_steps(),
+            procedures: None,
+            elements: None,
+            scale: default_scale(),
+            smallest: default_smallest(),
+            wobble: default_wobble(),
+            lines: Vec::new(),
+            manual: Vec::new(),
+            black: Black::default(),
+            hatch: default_hatch(),
+        }
+    }
 }
 
 impl Family for ZentangleSpec {

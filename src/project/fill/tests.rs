@@ -63,7 +63,10 @@ fn every_pattern_fills_the_frame_and_leaves_its_hole_empty() {
     let drawing = frame();
     assert_eq!(drawing.pens.len(), 1);
     for pattern in FillPattern::ALL {
-        let job = FillJob::new(pattern).with_spacing(4.0);
+        let job = match pattern {
+            FillPattern::Zentangle => FillJob::new(pattern).with_steps(10),
+            _ => FillJob::new(pattern).with_spacing(4.0),
+        };
         let filled = fill_scene(drawing.clone(), &job).unwrap();
         let layer = fill_layer(&filled);
         assert_eq!(layer.pen, 2, "{pattern:?}");
@@ -360,4 +363,27 @@ fn lbg_stippling_follows_a_density_formula() {
     let n = filled.fill.paths as f64;
     // (80² − 30²)/2 mm² at one dot per (√3/2)·4² mm²: about 198.
     assert!(n > 198.0 / 1.5 && n < 198.0 / 0.6, "{n} dots");
+}
+
+#[test]
+fn a_zentangle_fills_the_frame_and_refuses_the_sites_options() {
+    let job = FillJob::new(FillPattern::Zentangle).with_steps(15);
+    let filled = fill_scene(frame(), &job).unwrap();
+    assert!(filled.fill.paths > 15, "{} paths", filled.fill.paths);
+    // Nothing is drawn in the frame's hole (30 × 30 mm at 35, 35).
+    filled.scene.layers.last().unwrap().content.visit_paths(
+        kurbo::Affine::IDENTITY,
+        &mut |p, t| {
+            let b = (t * p.path.clone()).bounding_box();
+            let inside = b.x0 > 35.5 && b.x1 < 64.5 && b.y0 > 35.5 && b.y1 < 64.5;
+            assert!(!inside, "{} lies in the hole", p.id);
+        },
+    );
+    let (field, message) = invalid(frame(), job.clone().with_spacing(4.0));
+    assert_eq!(field, "spacing");
+    assert!(message.contains("zentangle pattern has none"), "{message}");
+    let (field, _) = invalid(frame(), FillJob::new(FillPattern::Voronoi).with_steps(4));
+    assert_eq!(field, "steps");
+    let (field, _) = invalid(frame(), job.with_steps(9000));
+    assert_eq!(field, "steps");
 }
