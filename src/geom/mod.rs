@@ -20,6 +20,7 @@ pub mod polylabel;
 pub mod region;
 pub mod sample;
 pub mod subpath;
+pub mod trace;
 pub mod voronoi;
 
 mod bow;

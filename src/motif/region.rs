@@ -1,6 +1,7 @@
 //! The region a pattern fills, from its `[region]` table (voronoi,
-//! zentangle): the page inside its margins, a circle, a polygon or the
-//! closed shapes of an SVG file, less the holes. Like every coordinate of
+//! zentangle): the page inside its margins, a circle, a polygon, the
+//! closed shapes of an SVG file or the light parts of an image, less the
+//! holes. Like every coordinate of
 //! a description, they are millimetres from the top left corner inside
 //! the margins.
 
@@ -9,6 +10,7 @@ use kurbo::{Circle, Point, Rect, Shape};
 use super::Context;
 use crate::error::{Error, Result};
 use crate::geom::region::{FillRule, Region};
+use crate::geom::trace::light_parts;
 use crate::spec::{CircleSpec, RegionSpec};
 
 /// Flattening accuracy of circles turned into regions (mm): the region
@@ -38,10 +40,20 @@ pub(crate) fn region(spec: &RegionSpec, cx: &Context<'_>) -> Result<Region> {
     } else {
         // Layers draw in the drawable area's own coordinates (the SVG
         // moves them in by the margins).
-        Region::from_rect(Rect::from_origin_size(
-            Point::ZERO,
-            cx.page().drawable().size(),
-        ))?
+        let page = Rect::from_origin_size(Point::ZERO, cx.page().drawable().size());
+        match &spec.image {
+            Some(name) => {
+                let light = light_parts(cx.library().image(name)?, page)?;
+                if light.is_empty() {
+                    return Err(Error::invalid(
+                        format!("{field}.image"),
+                        format!("{name}: has no light part (darkness below one half) to fill"),
+                    ));
+                }
+                light
+            }
+            None => Region::from_rect(page)?,
+        }
     };
     if spec.holes.is_empty() {
         return Ok(outer);

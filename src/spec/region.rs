@@ -22,6 +22,12 @@ pub struct RegionSpec {
     /// its own millimetres; shapes inside shapes are holes (even-odd).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub svg: Option<String>,
+    /// The light parts of a PNG or JPEG (darkness below one half),
+    /// relative to the description, fitted to the area inside the
+    /// margins, aspect kept, centred: a monochrome picture whose white
+    /// parts are the regions to fill.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image: Option<String>,
     /// Shapes cut out of the region.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub holes: Vec<HoleSpec>,
@@ -84,6 +90,7 @@ impl RegionSpec {
                 ("circle", self.circle.is_some()),
                 ("polygon", self.polygon.is_some()),
                 ("svg", self.svg.is_some()),
+                ("image", self.image.is_some()),
             ],
             true,
         )?;
@@ -93,9 +100,9 @@ impl RegionSpec {
         if let Some(p) = &self.polygon {
             points(&format!("{f}.polygon"), p, 3)?;
         }
-        if let Some(svg) = &self.svg {
-            if svg.trim().is_empty() {
-                return Err(Error::invalid(format!("{f}.svg"), "needs a file name"));
+        for (key, name) in [("svg", &self.svg), ("image", &self.image)] {
+            if name.as_deref().is_some_and(|n| n.trim().is_empty()) {
+                return Err(Error::invalid(format!("{f}.{key}"), "needs a file name"));
             }
         }
         for (i, h) in self.holes.iter().enumerate() {

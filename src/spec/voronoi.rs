@@ -306,6 +306,11 @@ impl Family for VoronoiSpec {
     }
 
     fn image_files(&self) -> Vec<&str> {
-        self.sites.image.as_deref().into_iter().collect()
+        self.sites
+            .image
+            .as_deref()
+            .into_iter()
+            .chain(self.region.image.as_deref())
+            .collect()
     }
 }

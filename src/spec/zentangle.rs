@@ -5,7 +5,8 @@
 //! seeds; black regions are finished; `steps` times.
 //!
 //! The region is the page inside its margins unless a `[region]` names a
-//! circle, a polygon or the closed shapes of an SVG file (less `holes`).
+//! circle, a polygon, the closed shapes of an SVG file or the light parts
+//! of a monochrome image (less `holes`).
 //! `lines` split it before the loop starts, and `manual` steps choose the
 //! procedure of the region under a point before the automatic ones.
 
@@ -214,5 +215,9 @@ impl Family for ZentangleSpec {
 
     fn path_files(&self) -> Vec<&str> {
         self.region.svg.as_deref().into_iter().collect()
+    }
+
+    fn image_files(&self) -> Vec<&str> {
+        self.region.image.as_deref().into_iter().collect()
     }
 }

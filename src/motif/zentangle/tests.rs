@@ -165,3 +165,52 @@ fn bad_tables_are_refused_with_their_field() {
         assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
     }
 }
+
+#[test]
+fn the_light_parts_of_an_image_are_the_regions() {
+    use crate::geom::density::GreyImage;
+    use crate::motif::Library;
+    use crate::project::build_scene_with_progress;
+    // A light disc on dark, 64 × 95 px over the 128 × 190 mm drawable
+    // area (2 mm a pixel): the disc has radius 50 mm about (64, 95).
+    let (w, h) = (64usize, 95usize);
+    let d = (0..h)
+        .flat_map(|j| (0..w).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            let (x, y) = (i as f64 * 2.0 + 1.0, j as f64 * 2.0 + 1.0);
+            if (x - 64.0).hypot(y - 95.0) < 50.0 {
+                0.0
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let mut library = Library::new();
+    library.add_image("stencil.png", GreyImage::new(w, h, d).unwrap());
+    let text = text("steps = 20\n[layers.zentangle.region]\nimage = \"stencil.png\"\n");
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+    let s = build_scene_with_progress(&spec, &library, &mut |_| {}).unwrap();
+    let mut n = 0;
+    s.layers[0]
+        .content
+        .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+            n += 1;
+            for q in points(&(t * p.path.clone())) {
+                assert!(
+                    q.distance(Point::new(64.0, 95.0)) < 51.5,
+                    "{} at {q:?}",
+                    p.id
+                );
+            }
+        });
+    assert!(n > 20, "{n} paths");
+    // An image dark all over has nothing to fill.
+    let mut library = Library::new();
+    library.add_image("stencil.png", GreyImage::new(2, 2, vec![1.0; 4]).unwrap());
+    let e = build_scene_with_progress(&spec, &library, &mut |_| {}).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("layers[0].zentangle[0].region.image: stencil.png: has no light part"),
+        "{e}"
+    );
+}
