@@ -60,6 +60,12 @@ pub struct ZentangleSpec {
     /// default 0.6 — the paper's full amount turns circles into blobs).
     #[serde(default = "default_wobble")]
     pub wobble: f64,
+    /// Per-stroke hand: every line is bent by its own smooth random
+    /// deformation of up to this many mm, as a hand never draws the same
+    /// curve twice (0–2, default 0: off). Beyond the paper, whose §5.6
+    /// names the mechanical look of whole-element deformation.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub hand: f64,
     /// Lines (polylines, mm, ≥ 2 points each) drawn first: they split the
     /// region as a pen line does.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -134,6 +140,10 @@ fn default_wobble() -> f64 {
     0.6
 }
 
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
 fn default_hatch() -> f64 {
     0.5
 }
@@ -151,6 +161,7 @@ impl Default for ZentangleSpec {
             scale: default_scale(),
             smallest: default_smallest(),
             wobble: default_wobble(),
+            hand: 0.0,
             lines: Vec::new(),
             manual: Vec::new(),
             black: Black::default(),
@@ -193,6 +204,7 @@ impl Family for ZentangleSpec {
         range(&format!("{f}.scale"), self.scale, 0.05, 1.0)?;
         range(&format!("{f}.smallest"), self.smallest, 0.2, 100.0)?;
         range(&format!("{f}.wobble"), self.wobble, 0.0, 2.0)?;
+        range(&format!("{f}.hand"), self.hand, 0.0, 2.0)?;
         for (i, line) in self.lines.iter().enumerate() {
             points(&format!("{f}.lines[{i}]"), line, 2)?;
         }

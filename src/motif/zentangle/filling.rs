@@ -10,14 +10,16 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-use kurbo::{BezPath, Point};
+use kurbo::{BezPath, Point, Shape as _};
 
 use super::compose::compose;
 use super::element::{Mark, Paint};
 use super::procedure::{draw, Allowed, Target, G1};
 use crate::error::{Error, Result};
+use crate::geom::ffd::Lattice;
 use crate::geom::polylabel::pole_of_inaccessibility;
 use crate::geom::region::Region;
+use crate::geom::TOLERANCE;
 use crate::rng::RandomStream;
 
 /// A white region waiting to be filled.
@@ -41,6 +43,21 @@ pub(super) struct Step {
     pub(super) black: Vec<Region>,
 }
 
+/// How the loop draws.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Settings {
+    /// Element size as a fraction of √(box area).
+    pub(super) scale: f64,
+    /// Regions narrower than this (inscribed radius, mm) are left white.
+    pub(super) smallest: f64,
+    /// Element deformation (1: the paper's).
+    pub(super) wobble: f64,
+    /// Per-stroke bending, mm (0: none).
+    pub(super) hand: f64,
+    /// The pen's width, mm.
+    pub(super) pen: f64,
+}
+
 /// The loop's state.
 pub(super) struct Filling {
     areas: Vec<Option<Area>>,
@@ -48,29 +65,29 @@ pub(super) struct Filling {
     /// first among equals.
     queue: BinaryHeap<(u64, Reverse<usize>)>,
     allowed: Allowed,
-    /// Regions narrower than this are left white.
-    smallest: f64,
-    scale: f64,
-    wobble: f64,
-    pen: f64,
+    settings: Settings,
+    /// The per-stroke bending's own numbers, so that turning it on
+    /// changes how the lines are drawn, not what is drawn.
+    hand: RandomStream,
 }
 
 impl Filling {
-    /// The blank `region`, split by `lines` (drawn as the first step).
+    /// The blank `region`, split by `lines` (drawn as the first step);
+    /// `hand` draws the per-stroke bending.
     pub(super) fn new(
         region: &Region,
         lines: Vec<BezPath>,
         allowed: Allowed,
-        (scale, smallest, wobble, pen): (f64, f64, f64, f64),
+        settings: Settings,
+        hand: RandomStream,
     ) -> Result<(Filling, Step)> {
+        let pen = settings.pen;
         let mut filling = Filling {
             areas: Vec::new(),
             queue: BinaryHeap::new(),
             allowed,
-            smallest,
-            scale,
-            wobble,
-            pen,
+            settings,
+            hand,
         };
         let marks: Vec<Mark> = lines
             .into_iter()
@@ -92,11 +109,11 @@ impl Filling {
     }
 
     fn push(&mut self, region: Region, seed: Option<u32>) {
-        let precision = precision(&region, self.pen);
+        let precision = precision(&region, self.settings.pen);
         let Some((pole, radius)) = pole_of_inaccessibility(&region, precision) else {
             return;
         };
-        if radius < self.smallest {
+        if radius < self.settings.smallest {
             return;
         }
         let id = self.areas.len();
@@ -175,16 +192,28 @@ impl Filling {
 
     fn draw_in(&mut self, area: Area, procedure: u32, rng: &mut RandomStream) -> Result<Step> {
         let b = area.region.bounds();
+        let Settings {
+            scale,
+            wobble,
+            hand,
+            pen,
+            ..
+        } = self.settings;
         let target = Target {
             region: &area.region,
             pole: area.pole,
             radius: area.radius,
-            size: self.scale * b.area().sqrt(),
-            wobble: self.wobble,
-            pen: self.pen,
+            size: scale * b.area().sqrt(),
+            wobble,
+            pen,
         };
-        let drawn = draw(procedure, &target, &self.allowed, rng)?;
-        let composed = compose(&area.region, &drawn.marks, self.pen, flattening(self.pen))?;
+        let mut drawn = draw(procedure, &target, &self.allowed, rng)?;
+        if hand > 0.0 {
+            for m in &mut drawn.marks {
+                *m = by_hand(m, hand, &mut self.hand)?;
+            }
+        }
+        let composed = compose(&area.region, &drawn.marks, pen, flattening(pen))?;
         for piece in composed.white {
             // Inside a white mark: the seed the mark was given. Elsewhere
             // the piece keeps its region's seed, as its pixels would in the
@@ -198,6 +227,17 @@ impl Filling {
             black: composed.black,
         })
     }
+}
+
+/// `mark` bent by a deformation of its own that moves no point more than
+/// about `amount` mm: a 4×4 lattice over its box (grown by `amount`, so a
+/// straight line has a box to bend in) whose control points move up to
+/// `amount`.
+pub(super) fn by_hand(mark: &Mark, amount: f64, rng: &mut RandomStream) -> Result<Mark> {
+    let b = mark.path.bounding_box().inflate(amount, amount);
+    // A control point moves up to rx/2 lattice cells of width/3.
+    let lattice = Lattice::jittered(b, 6.0 * amount / b.width(), 6.0 * amount / b.height(), rng)?;
+    Ok(mark.deformed(&lattice, TOLERANCE))
 }
 
 /// How closely white pieces, black parts and ink follow the curves (mm):

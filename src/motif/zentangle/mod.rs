@@ -32,7 +32,7 @@ use crate::error::{Error, Result};
 use crate::scene::{Color, Group, Style};
 use crate::spec::{Black, ZentangleSpec, ELEMENTS, PROCEDURES};
 use element::Shape;
-use filling::{Filling, Step};
+use filling::{Filling, Settings, Step};
 use procedure::Allowed;
 
 /// Builds a zentangle fill into a group with id `group_id`.
@@ -56,12 +56,15 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
     debug_assert!(ELEMENTS.iter().all(|n| Shape::from_name(n).is_some()));
     let lines: Vec<BezPath> = spec.lines.iter().map(|l| polyline(l)).collect();
     let pen = cx.pen_width();
-    let (mut filling, first) = Filling::new(
-        &region,
-        lines,
-        allowed,
-        (spec.scale, spec.smallest, spec.wobble, pen),
-    )?;
+    let settings = Settings {
+        scale: spec.scale,
+        smallest: spec.smallest,
+        wobble: spec.wobble,
+        hand: spec.hand,
+        pen,
+    };
+    let hand = cx.stream(&format!("{group_id}/hand"));
+    let (mut filling, first) = Filling::new(&region, lines, allowed, settings, hand)?;
     if filling.open() == 0 && !region.is_empty() {
         return Err(Error::invalid(
             cx.field("region"),

@@ -4,7 +4,7 @@
 
 use kurbo::{BezPath, PathEl, Point, Rect};
 
-use super::filling::Filling;
+use super::filling::{Filling, Settings};
 use super::procedure::{seed_group, Allowed};
 use super::Shape;
 use crate::geom::offset::offset;
@@ -63,7 +63,15 @@ fn all() -> Allowed {
 fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
     let page = Region::from_rect(Rect::new(0.0, 0.0, 150.0, 200.0)).unwrap();
     let pen = 0.3;
-    let (mut filling, _) = Filling::new(&page, Vec::new(), all(), (0.35, 1.5, 0.6, pen)).unwrap();
+    let settings = Settings {
+        scale: 0.35,
+        smallest: 1.5,
+        wobble: 0.6,
+        hand: 0.4,
+        pen,
+    };
+    let hand = Seed(11).derive("hand").stream();
+    let (mut filling, _) = Filling::new(&page, Vec::new(), all(), settings, hand).unwrap();
     let mut rng = Seed(11).derive("t").stream();
     let mut last = f64::INFINITY;
     for k in 0..60 {
@@ -212,5 +220,48 @@ fn the_light_parts_of_an_image_are_the_regions() {
         e.to_string()
             .contains("layers[0].zentangle[0].region.image: stencil.png: has no light part"),
         "{e}"
+    );
+}
+
+#[test]
+fn a_hand_bends_each_stroke_a_little_and_differently() {
+    use super::element::{Mark, Paint};
+    let mut line = BezPath::new();
+    line.move_to((0.0, 0.0));
+    line.line_to((100.0, 0.0));
+    let mark = Mark {
+        path: line,
+        paint: Paint::Line,
+    };
+    let mut rng = Seed(3).derive("hand").stream();
+    let a = super::filling::by_hand(&mark, 0.5, &mut rng).unwrap();
+    let b = super::filling::by_hand(&mark, 0.5, &mut rng).unwrap();
+    let (pa, pb) = (points(&a.path), points(&b.path));
+    // Every point within the amount of the line (the lattice's weights
+    // sum to one), the two copies different, and the line really bent.
+    let off = |ps: &[Point]| ps.iter().map(|p| p.y.abs()).fold(0.0, f64::max);
+    assert!(off(&pa) <= 0.5 + 1e-9 && off(&pb) <= 0.5 + 1e-9);
+    assert!(off(&pa) > 0.05);
+    assert_ne!(pa, pb);
+    // Off by default; on, the same tangle is drawn (the same steps and
+    // procedures), its lines bent.
+    let plain = scene("steps = 6\n");
+    let by_hand = scene("steps = 6\nhand = 0.4\n");
+    let steps = |s: &Scene| {
+        let mut ids: Vec<String> = Vec::new();
+        s.layers[0]
+            .content
+            .visit_paths(kurbo::Affine::IDENTITY, &mut |p, _| {
+                let step = p.id.split('.').nth(2).unwrap_or("").to_string();
+                if ids.last() != Some(&step) {
+                    ids.push(step);
+                }
+            });
+        ids
+    };
+    assert_eq!(steps(&plain), steps(&by_hand));
+    assert_ne!(
+        crate::output::path_dump(&plain, 3),
+        crate::output::path_dump(&by_hand, 3)
     );
 }
