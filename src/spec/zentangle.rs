@@ -66,6 +66,12 @@ pub struct ZentangleSpec {
     /// names the mechanical look of whole-element deformation.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub hand: f64,
+    /// Line weight by hand: every line is drawn a second time, bent by up
+    /// to this many mm, so it thickens unevenly as a pen going over it
+    /// again does (0–1, default 0: once). Beyond the paper (§5.6: no
+    /// line-weight variation).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub retrace: f64,
     /// Lines (polylines, mm, ≥ 2 points each) drawn first: they split the
     /// region as a pen line does.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -162,6 +168,7 @@ impl Default for ZentangleSpec {
             smallest: default_smallest(),
             wobble: default_wobble(),
             hand: 0.0,
+            retrace: 0.0,
             lines: Vec::new(),
             manual: Vec::new(),
             black: Black::default(),
@@ -205,6 +212,7 @@ impl Family for ZentangleSpec {
         range(&format!("{f}.smallest"), self.smallest, 0.2, 100.0)?;
         range(&format!("{f}.wobble"), self.wobble, 0.0, 2.0)?;
         range(&format!("{f}.hand"), self.hand, 0.0, 2.0)?;
+        range(&format!("{f}.retrace"), self.retrace, 0.0, 1.0)?;
         for (i, line) in self.lines.iter().enumerate() {
             points(&format!("{f}.lines[{i}]"), line, 2)?;
         }

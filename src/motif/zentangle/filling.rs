@@ -14,7 +14,7 @@ use kurbo::{BezPath, Point, Shape as _};
 
 use super::compose::compose;
 use super::element::{Mark, Paint};
-use super::procedure::{draw, Allowed, Target, G1};
+use super::procedure::{draw, Allowed, Drawn, Target, G1};
 use crate::error::{Error, Result};
 use crate::geom::ffd::Lattice;
 use crate::geom::polylabel::pole_of_inaccessibility;
@@ -54,6 +54,8 @@ pub(super) struct Settings {
     pub(super) wobble: f64,
     /// Per-stroke bending, mm (0: none).
     pub(super) hand: f64,
+    /// Every line drawn a second time, bent by up to this, mm (0: once).
+    pub(super) retrace: f64,
     /// The pen's width, mm.
     pub(super) pen: f64,
 }
@@ -139,6 +141,24 @@ impl Filling {
         None
     }
 
+    /// Each mark followed by its line drawn again, bent by up to
+    /// `retrace` mm: a pen going over its line a second time, which
+    /// thickens it unevenly (line weight by hand). The copies paint
+    /// nothing and call nothing.
+    fn retraced(&mut self, drawn: Drawn) -> Result<Drawn> {
+        let mut out = Drawn::default();
+        for (m, seed) in drawn.marks.into_iter().zip(drawn.seeds) {
+            let again = Mark {
+                path: m.path.clone(),
+                paint: Paint::Line,
+            };
+            let again = by_hand(&again, self.settings.retrace, &mut self.hand)?;
+            out.marks.extend([m, again]);
+            out.seeds.extend([seed, None]);
+        }
+        Ok(out)
+    }
+
     /// The white regions left that are wide enough to draw in.
     pub(super) fn open(&self) -> usize {
         self.areas.iter().flatten().count()
@@ -212,6 +232,9 @@ impl Filling {
             for m in &mut drawn.marks {
                 *m = by_hand(m, hand, &mut self.hand)?;
             }
+        }
+        if self.settings.retrace > 0.0 {
+            drawn = self.retraced(drawn)?;
         }
         let composed = compose(&area.region, &drawn.marks, pen, flattening(pen))?;
         for piece in composed.white {

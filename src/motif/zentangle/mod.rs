@@ -61,6 +61,7 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         smallest: spec.smallest,
         wobble: spec.wobble,
         hand: spec.hand,
+        retrace: spec.retrace,
         pen,
     };
     let hand = cx.stream(&format!("{group_id}/hand"));

@@ -176,7 +176,9 @@ pub(super) struct Target<'a> {
 /// each, the seed its white interior gets.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Drawn {
+    /// The marks.
     pub(super) marks: Vec<Mark>,
+    /// For each mark, the seed of its white interior.
     pub(super) seeds: Vec<Option<u32>>,
 }
 

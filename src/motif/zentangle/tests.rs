@@ -68,6 +68,7 @@ fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
         smallest: 1.5,
         wobble: 0.6,
         hand: 0.4,
+        retrace: 0.2,
         pen,
     };
     let hand = Seed(11).derive("hand").stream();
@@ -264,4 +265,16 @@ fn a_hand_bends_each_stroke_a_little_and_differently() {
         crate::output::path_dump(&plain, 3),
         crate::output::path_dump(&by_hand, 3)
     );
+}
+
+#[test]
+fn retracing_draws_each_line_twice_near_itself() {
+    let once = scene("steps = 4\nwobble = 0\n");
+    let twice = scene("steps = 4\nwobble = 0\nretrace = 0.3\n");
+    let length = |s: &Scene| s.stats().pen_down_mm;
+    // The same steps, about twice the ink (a little less where a copy
+    // falls outside its region or under a later fill).
+    let ratio = length(&twice) / length(&once);
+    assert!(ratio > 1.6 && ratio < 2.2, "{ratio}");
+    assert!(error("retrace = 2\n").contains("layers[0].zentangle[0].retrace"));
 }
