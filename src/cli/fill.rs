@@ -179,6 +179,9 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
         if filled.new_pen { "new" } else { "the input's" },
         filled.pen,
     );
+    for note in &filled.notes {
+        eprintln!("{}: {}", note.motif, note.text);
+    }
     warn_outside_page(&filled.scene);
     Ok(())
 }

@@ -13,7 +13,7 @@ use std::collections::BTreeSet;
 
 use kurbo::{Affine, BezPath};
 
-use super::build_scene_with_progress;
+use super::{build, Note};
 use crate::error::{Error, Result};
 use crate::geom::density::GreyImage;
 use crate::geom::path_length;
@@ -265,6 +265,9 @@ pub struct Filled {
     pub new_pen: bool,
     /// Paths and pen-down length of the fill alone.
     pub fill: Stats,
+    /// What the fill's generator noted (how a relaxation converged, how
+    /// many zentangle steps ran).
+    pub notes: Vec<Note>,
 }
 
 impl Filled {
@@ -369,7 +372,9 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     if let Some(image) = &job.image {
         library.add_image(IMAGE, image.clone());
     }
-    let mut built = build_scene_with_progress(&spec, &library, &mut |_| {}).map_err(by_option)?;
+    let (mut built, notes) = build(&spec, &library, &mut |_| {})
+        .map_err(|e| spec.locate(e))
+        .map_err(by_option)?;
     // Black parts of a zentangle are hatched by its own pen, as in a
     // render: a fill a pen cannot draw would be lost on the plotter.
     crate::plot::hatch::run_own(&mut built)?;
@@ -399,6 +404,7 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
         pen,
         new_pen,
         fill,
+        notes,
     })
 }
 

@@ -370,6 +370,12 @@ fn a_zentangle_fills_the_frame_and_refuses_the_sites_options() {
     let job = FillJob::new(FillPattern::Zentangle).with_steps(15);
     let filled = fill_scene(frame(), &job).unwrap();
     assert!(filled.fill.paths > 15, "{} paths", filled.fill.paths);
+    assert_eq!(filled.notes.len(), 1);
+    assert!(
+        filled.notes[0].text.starts_with("15 steps"),
+        "{:?}",
+        filled.notes
+    );
     // Nothing is drawn in the frame's hole (30 × 30 mm at 35, 35).
     filled.scene.layers.last().unwrap().content.visit_paths(
         kurbo::Affine::IDENTITY,
