@@ -74,10 +74,11 @@ pub(super) struct Filling {
 }
 
 impl Filling {
-    /// The blank `region`, split by `lines` (drawn as the first step);
-    /// `hand` draws the per-stroke bending.
+    /// The blank `regions` (each a white region of its own, as the
+    /// sections a string makes), split by `lines` (drawn as the first
+    /// step); `hand` draws the per-stroke bending.
     pub(super) fn new(
-        region: &Region,
+        regions: &[Region],
         lines: Vec<BezPath>,
         allowed: Allowed,
         settings: Settings,
@@ -98,15 +99,15 @@ impl Filling {
                 paint: Paint::Line,
             })
             .collect();
-        let composed = compose(region, &marks, pen, flattening(pen))?;
-        for piece in composed.white {
-            filling.push(piece.region, None);
+        let mut step = Step::default();
+        for region in regions {
+            let composed = compose(region, &marks, pen, flattening(pen))?;
+            for piece in composed.white {
+                filling.push(piece.region, None);
+            }
+            step.strokes.extend(composed.strokes);
+            step.black.extend(composed.black);
         }
-        let step = Step {
-            procedure: None,
-            strokes: composed.strokes,
-            black: composed.black,
-        };
         Ok((filling, step))
     }
 

@@ -65,7 +65,7 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         pen,
     };
     let hand = cx.stream(&format!("{group_id}/hand"));
-    let (mut filling, first) = Filling::new(&region, lines, allowed, settings, hand)?;
+    let (mut filling, first) = Filling::new(&[region.clone()], lines, allowed, settings, hand)?;
     if filling.open() == 0 && !region.is_empty() {
         return Err(Error::invalid(
             cx.field("region"),

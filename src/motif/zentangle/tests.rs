@@ -72,7 +72,7 @@ fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
         pen,
     };
     let hand = Seed(11).derive("hand").stream();
-    let (mut filling, _) = Filling::new(&page, Vec::new(), all(), settings, hand).unwrap();
+    let (mut filling, _) = Filling::new(&[page], Vec::new(), all(), settings, hand).unwrap();
     let mut rng = Seed(11).derive("t").stream();
     let mut last = f64::INFINITY;
     for k in 0..60 {
