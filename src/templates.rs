@@ -53,6 +53,8 @@ pub const ALL: &[Template] = templates![
     "zentangle-string",
     "zentangle-ring",
     "zentangle-geometric",
+    "zentangle-voronoi",
+    "kimono-tangles",
     "delaunay-lowpoly",
 ];
 

@@ -27,6 +27,7 @@ use moyo::geom::region::{FillRule, Region};
 use moyo::motif::{Drawing, Library};
 use moyo::project::{self, Rendered};
 use moyo::spec::{Format, MotifKind, MotifRef, SceneSpec, ValidSpec};
+use moyo::Style;
 use moyo::{templates, Scene, Seed};
 
 // ------------------------------------------------------------- helpers
@@ -1486,7 +1487,7 @@ const STAMP: f64 = 8.0;
 /// roots lie inside the circles when `roots_inside`.
 fn background_scene(composite: u8, pattern: u8, roots_inside: bool) -> String {
     let motifs = match pattern {
-        1 => "",
+        0 | 1 => "",
         5 => r#"motifs = ["shippo"]"#,
         _ => r#"motifs = ["seigaiha", "kikko"]"#,
     };
@@ -1681,6 +1682,37 @@ fn solid_pattern_without_paint_is_filled_grey_and_hatched() {
         }
     });
     assert_eq!(hatch, Some(Some(3.0)));
+}
+
+#[test]
+fn pattern_0_draws_the_outline_alone_and_a_later_zentangle_fills_the_mask() {
+    let text = background_scene(1, 0, true)
+        + "[[layers]]\nname = \"z\"\n[[layers.zentangle]]\nsteps = 25\n\
+           region = { layer = \"bg\" }\n";
+    let spec = parse(&text);
+    let scene = build(&spec);
+    let (mask, tiles) = mask_and_tiles(&scene);
+    assert!(tiles.is_empty(), "{} tiles", tiles.len());
+    let mut style = None;
+    scene.visit_paths(|_, p, _| {
+        if p.id == "bg.background.mask" {
+            style = Some(p.style.clone());
+        }
+    });
+    assert_eq!(style, Some(Style::default()), "the outline alone");
+    // The tangles lie in the mask, within the pen's half width.
+    let region = Region::new(mask, FillRule::NonZero).unwrap();
+    let reach = offset(&region, 0.15 + 0.05, 0.01).unwrap();
+    let tangles: Vec<PagePath> = page_paths(&scene)
+        .into_iter()
+        .filter(|p| p.layer == "z")
+        .collect();
+    assert!(tangles.len() > 100, "{} tangle paths", tangles.len());
+    for t in &tangles {
+        for q in samples(&t.path, 2) {
+            assert!(reach.contains(q), "{} leaves the mask at {q:?}", t.id);
+        }
+    }
 }
 
 /// Big filled flowers that overlap one another on a small tree.

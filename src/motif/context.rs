@@ -3,14 +3,18 @@
 //! It carries the scene's seed (each motif derives its own stream from its
 //! id, so editing one part leaves the others as they were), the motif
 //! library, the overall flow, the layer being built (its description, id
-//! and depth), the path budget, the final adjustments by id, and progress.
+//! and depth), the path budget, the final adjustments by id, progress,
+//! and the regions earlier layers drew for later ones to fill.
 //! With it no generator needs more than a handful of arguments, and a new
 //! family gets all of this by taking a `&mut Context`.
+
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::adjust::Adjustments;
 use super::flora::Library;
 use super::flow::Flow;
 use crate::error::Result;
+use crate::geom::region::Region;
 use crate::rng::{RandomStream, Seed};
 use crate::scene::PathBudget;
 use crate::spec::{LayerSpec, PenSpec, ValidSpec};
@@ -60,6 +64,10 @@ pub struct Context<'a> {
     report: &'a mut dyn FnMut(Progress),
     notes: Vec<Note>,
     pens: &'a [PenSpec],
+    /// The names of the layers whose regions a later table fills.
+    read: BTreeSet<&'a str>,
+    /// The regions those layers drew, by layer name, as they were built.
+    offered: BTreeMap<&'a str, Vec<Region>>,
 }
 
 impl<'a> Context<'a> {
@@ -90,6 +98,14 @@ impl<'a> Context<'a> {
             report,
             notes: Vec::new(),
             pens: &spec.pens,
+            read: spec
+                .layers
+                .iter()
+                .flat_map(LayerSpec::items)
+                .flat_map(|item| item.table.family().layers_read())
+                .map(|(_, name)| name)
+                .collect(),
+            offered: BTreeMap::new(),
         }
     }
 
@@ -221,6 +237,26 @@ impl<'a> Context<'a> {
         if done > self.progress.done {
             self.advance(done - self.progress.done);
         }
+    }
+
+    /// Whether a later table fills the regions this layer draws: a
+    /// family that offers regions hands them to [`Context::offer`] only
+    /// then, as finding them may cost work its drawing does not need.
+    pub(crate) fn regions_wanted(&self) -> bool {
+        self.read.contains(self.frame().spec.name.as_str())
+    }
+
+    /// Adds regions the current layer drew (cells, a mask) for later
+    /// layers to fill.
+    pub(crate) fn offer(&mut self, regions: impl IntoIterator<Item = Region>) {
+        let name = self.frame().spec.name.as_str();
+        self.offered.entry(name).or_default().extend(regions);
+    }
+
+    /// The regions the layer named `layer` offered (none when it has not
+    /// been built yet).
+    pub(crate) fn offered(&self, layer: &str) -> &[Region] {
+        self.offered.get(layer).map_or(&[], Vec::as_slice)
     }
 
     /// Tells the user `text` about the motif `motif` (its group id).

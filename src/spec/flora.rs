@@ -418,9 +418,11 @@ pub struct BackgroundSpec {
     /// Stamp height in mm; default: from the stamp's proportions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stamp_height: Option<f64>,
-    /// Pattern 1–5 composited into the mask (SPEC §1.6).
+    /// Pattern 1–5 composited into the mask (SPEC §1.6), or 0: none, the
+    /// mask's outline alone (for a later layer to fill).
     pub pattern: u8,
-    /// The pattern's motifs: none for 1; one for 5; one or two for 2–4.
+    /// The pattern's motifs: none for 0 and 1; one for 5; one or two for
+    /// 2–4.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub motifs: Vec<MotifRef>,
     /// Tile width in mm (0.5–500).
@@ -554,6 +556,10 @@ impl BackgroundSpec {
 }
 
 impl Family for BackgroundSpec {
+    fn offers_regions(&self) -> bool {
+        true
+    }
+
     fn check(&self, f: &str) -> Result<()> {
         range(&format!("{f}.composite"), self.composite, 1, 4)?;
         range(&format!("{f}.count"), self.count, 0, 1000)?;
@@ -577,9 +583,9 @@ impl Family for BackgroundSpec {
         if let Some(h) = self.stamp_height {
             size(&format!("{f}.stamp_height"), h)?;
         }
-        range(&format!("{f}.pattern"), self.pattern, 1, 5)?;
+        range(&format!("{f}.pattern"), self.pattern, 0, 5)?;
         let (min, max) = match self.pattern {
-            1 => (0, 0),
+            0 | 1 => (0, 0),
             5 => (1, 1),
             _ => (1, 2),
         };

@@ -98,6 +98,19 @@ pub trait Family {
     fn image_files(&self) -> Vec<&str> {
         Vec::new()
     }
+
+    /// The layers whose regions it fills, by name, each with the field
+    /// that names it below the table (`region.layer`). They must come
+    /// before its own layer and offer regions.
+    fn layers_read(&self) -> Vec<(&'static str, &str)> {
+        Vec::new()
+    }
+
+    /// Whether the regions it draws (cells, a mask) can be filled by the
+    /// tables of later layers.
+    fn offers_regions(&self) -> bool {
+        false
+    }
 }
 
 impl<'a> Table<'a> {

@@ -1,6 +1,7 @@
 //! Where a pattern lies (`[…region]`): the page inside its margins, a
-//! circle, a polygon or the closed shapes of an SVG file, less holes.
-//! Shared by the families that fill a region (voronoi, zentangle).
+//! circle, a polygon, the closed shapes of an SVG file, the light parts of
+//! an image or the regions another layer drew, less holes. Shared by the
+//! families that fill a region (voronoi, zentangle).
 
 use serde::{Deserialize, Serialize};
 
@@ -28,6 +29,17 @@ pub struct RegionSpec {
     /// parts are the regions to fill.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub image: Option<String>,
+    /// The regions a layer before this one drew, by its name: the cells
+    /// of its voronoi tables (the inset cells when it draws those, its
+    /// Delaunay triangles when it draws only those) and the mask of its
+    /// background. Each is a region of its own: a zentangle starts from
+    /// them as from the sections of a string; a voronoi pattern fills
+    /// them all.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layer: Option<String>,
+    /// With `layer`: only the regions holding one of these points (mm).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub at: Points,
     /// Shapes cut out of the region.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub holes: Vec<HoleSpec>,
@@ -36,6 +48,16 @@ pub struct RegionSpec {
 impl RegionSpec {
     pub(super) fn is_page(&self) -> bool {
         *self == RegionSpec::default()
+    }
+
+    /// The layer it takes its regions from, as [`super::Family::layers_read`]
+    /// lists it for a table whose region is its field `region`.
+    pub(super) fn layers_read(&self) -> Vec<(&'static str, &str)> {
+        self.layer
+            .as_deref()
+            .map(|name| ("region.layer", name))
+            .into_iter()
+            .collect()
     }
 }
 
@@ -91,9 +113,19 @@ impl RegionSpec {
                 ("polygon", self.polygon.is_some()),
                 ("svg", self.svg.is_some()),
                 ("image", self.image.is_some()),
+                ("layer", self.layer.is_some()),
             ],
             true,
         )?;
+        if !self.at.is_empty() && self.layer.is_none() {
+            return Err(Error::invalid(
+                format!("{f}.at"),
+                "picks regions of a `layer`: give the layer too",
+            ));
+        }
+        for (i, &p) in self.at.iter().enumerate() {
+            point(&format!("{f}.at[{i}]"), p)?;
+        }
         if let Some(c) = &self.circle {
             c.check(&format!("{f}.circle"))?;
         }
@@ -104,6 +136,9 @@ impl RegionSpec {
             if name.as_deref().is_some_and(|n| n.trim().is_empty()) {
                 return Err(Error::invalid(format!("{f}.{key}"), "needs a file name"));
             }
+        }
+        if self.layer.as_deref().is_some_and(|n| n.trim().is_empty()) {
+            return Err(Error::invalid(format!("{f}.layer"), "needs a layer's name"));
         }
         for (i, h) in self.holes.iter().enumerate() {
             let hf = format!("{f}.holes[{i}]");

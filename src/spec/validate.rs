@@ -155,6 +155,11 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
             ));
         }
         self::layer(&f, layer, &numbers)?;
+        for item in layer.items() {
+            for (field, name) in item.table.family().layers_read() {
+                read_layer(&format!("{f}.{}.{field}", item.field), name, &s.layers[..i])?;
+            }
+        }
     }
     let mut adjusted = BTreeSet::new();
     for (i, a) in s.adjust.iter().enumerate() {
@@ -245,6 +250,40 @@ fn layer(f: &str, layer: &LayerSpec, pens: &BTreeSet<u32>) -> Result<()> {
             ));
         }
         item.table.family().check(&field)?;
+    }
+    Ok(())
+}
+
+/// Checks that the layer `name`, whose regions a table fills, comes
+/// before it and draws regions.
+fn read_layer(f: &str, name: &str, earlier: &[LayerSpec]) -> Result<()> {
+    let Some(layer) = earlier.iter().find(|l| l.name == name) else {
+        let names: Vec<&str> = earlier.iter().map(|l| l.name.as_str()).collect();
+        let known = if names.is_empty() {
+            "none: this is the first layer".to_string()
+        } else {
+            names.join(", ")
+        };
+        return Err(Error::invalid(
+            f,
+            format!(
+                "no layer named '{name}' comes before this one (layers are built in order, \
+                 so a table fills the regions of an earlier one; earlier layers: {known})"
+            ),
+        ));
+    };
+    if !layer
+        .items()
+        .iter()
+        .any(|it| it.table.family().offers_regions())
+    {
+        return Err(Error::invalid(
+            f,
+            format!(
+                "layer '{name}' draws no regions to fill (voronoi tables offer their cells, \
+                 a background its mask)"
+            ),
+        ));
     }
     Ok(())
 }

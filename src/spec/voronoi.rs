@@ -313,4 +313,12 @@ impl Family for VoronoiSpec {
             .chain(self.region.image.as_deref())
             .collect()
     }
+
+    fn layers_read(&self) -> Vec<(&'static str, &str)> {
+        self.region.layers_read()
+    }
+
+    fn offers_regions(&self) -> bool {
+        true
+    }
 }

@@ -240,4 +240,8 @@ impl Family for ZentangleSpec {
     fn image_files(&self) -> Vec<&str> {
         self.region.image.as_deref().into_iter().collect()
     }
+
+    fn layers_read(&self) -> Vec<(&'static str, &str)> {
+        self.region.layers_read()
+    }
 }

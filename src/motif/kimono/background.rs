@@ -16,6 +16,9 @@
 //! **Pattern.** What fills the mask, clipped to it (tiles are cut exactly
 //! at the mask's outline):
 //!
+//! 0. none (beyond the source): the mask's outline alone, with its
+//!    `paint` if any — a region for a later layer to fill with tangles or
+//!    cells (`region.layer`);
 //! 1. solid: the mask itself, filled (preview) and hatched (pens) — when
 //!    the description gives no paint, a grey fill hatched every 1 mm;
 //! 2. the motifs tiled edge to edge on a grid, alternating like a
@@ -28,7 +31,8 @@
 //!
 //! The mask's outline is drawn unless `outline = false`; the base paint
 //! (`paint`) fills it under patterns 2–5. Ids: `<layer>.background.mask`,
-//! `<layer>.background.tile-<n>`.
+//! `<layer>.background.tile-<n>`. Later layers can fill the mask's islands
+//! (`region.layer`).
 
 use kurbo::{Affine, BezPath, Point, Rect, Shape};
 
@@ -74,6 +78,10 @@ pub(crate) fn background(
     let mask = Region::union_all(&regions);
     if mask.is_empty() {
         return Ok(group);
+    }
+    if cx.regions_wanted() {
+        // Each island of the mask is a region of its own to fill.
+        cx.offer(mask.components());
     }
 
     let base = if bg.pattern == 1 {

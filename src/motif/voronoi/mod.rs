@@ -132,8 +132,52 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
         }
         group.push_group(part);
     }
+    if cx.regions_wanted() {
+        let offered = offered(spec, diagram.as_ref(), &sites, &domain, &region, &options)?;
+        cx.offer(offered);
+    }
     cx.advance(1);
     Ok(group)
+}
+
+/// The regions the pattern offers later layers to fill: the closed shapes
+/// it draws — inset cells, else cells, else Delaunay triangles (when those
+/// are all it draws) — or its cells when it draws none of them.
+fn offered(
+    spec: &VoronoiSpec,
+    diagram: Option<&Diagram>,
+    sites: &[Point],
+    domain: &Domain,
+    region: &Region,
+    options: &CellOptions,
+) -> Result<Vec<Region>> {
+    let cells = |diagram: &Diagram| -> Vec<Region> {
+        diagram
+            .cells()
+            .iter()
+            .filter(|c| !c.is_empty())
+            .map(|c| c.to_region())
+            .collect()
+    };
+    if spec.draw.contains(&Draw::Delaunay) && diagram.is_none() {
+        let coarse = Domain::new(region, TRIANGULATION_OUTLINE)?;
+        let cdt = constrained_delaunay(sites, &coarse, options)?;
+        // A sliver along a curved outline may enclose no area to speak
+        // of: it holds nothing to fill.
+        return Ok(cdt
+            .triangles
+            .iter()
+            .filter_map(|t| Region::polygon(t).ok())
+            .collect());
+    }
+    match diagram {
+        Some(d) if spec.draw.contains(&Draw::Inset) => Ok(inset(spec, d, "")?
+            .into_iter()
+            .map(|(_, path)| Region::from_normalised(path))
+            .collect()),
+        Some(d) => Ok(cells(d)),
+        None => Ok(cells(&Diagram::new(sites, domain, options)?)),
+    }
 }
 
 /// The sites relaxed as the description says, with a note on how far

@@ -26,7 +26,7 @@ mod procedure;
 
 use kurbo::{BezPath, Point};
 
-use super::region::region;
+use super::region::regions;
 use super::Context;
 use crate::error::{Error, Result};
 use crate::scene::{Color, Group, Style};
@@ -41,7 +41,7 @@ use procedure::Allowed;
 /// A region that encloses nothing; a manual step whose point lies in no
 /// white region; the path budget.
 pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-    let region = region(&spec.region, cx)?;
+    let regions = regions(&spec.region, cx)?;
     let mut rng = cx.stream(group_id);
     let allowed = Allowed {
         procedures: spec
@@ -65,8 +65,8 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         pen,
     };
     let hand = cx.stream(&format!("{group_id}/hand"));
-    let (mut filling, first) = Filling::new(&[region.clone()], lines, allowed, settings, hand)?;
-    if filling.open() == 0 && !region.is_empty() {
+    let (mut filling, first) = Filling::new(&regions, lines, allowed, settings, hand)?;
+    if filling.open() == 0 {
         return Err(Error::invalid(
             cx.field("region"),
             format!(
