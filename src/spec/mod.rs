@@ -35,7 +35,7 @@ pub use voronoi::{
     Distribution, Draw, RelaxationMethod, SitesSpec, VoronoiSpec, DEFAULT_SPACING, MAX_RELAX,
     MAX_SITES,
 };
-pub use zentangle::{Black, ManualStep, ZentangleSpec, ELEMENTS, MAX_STEPS, PROCEDURES};
+pub use zentangle::{Black, ManualStep, ToneSpec, ZentangleSpec, ELEMENTS, MAX_STEPS, PROCEDURES};
 
 use serde::{Deserialize, Serialize};
 

@@ -17,6 +17,7 @@ use super::region::RegionSpec;
 use super::validate::{point, points, range};
 use super::Points;
 use crate::error::{Error, Result};
+use crate::geom::density::Formula;
 
 /// A zentangle fill on a layer.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -72,6 +73,25 @@ pub struct ZentangleSpec {
     /// line-weight variation).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub retrace: f64,
+    /// How often the lattice patterns (MT, MS, MA: procedures 5, 6, 9,
+    /// 10) lay their rows along the region's outline — rings that bend
+    /// with it and go round its holes — instead of on a straight lattice
+    /// (0–1, default 0: never). Beyond the paper (§5.6: patterns not
+    /// mapped to the region's shape).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub follow: f64,
+    /// How deep the plant branches of ML (procedure 7) branch: 0 is the
+    /// paper's single stem with leaves; 1 adds side branches from every
+    /// third node; 2 (the default) side branches of those (0–3). Beyond the
+    /// paper (§5.6: no branching placement).
+    #[serde(default = "default_branching")]
+    pub branching: u32,
+    /// Tone control: a target darkness over the region, so that dark
+    /// parts get denser tangles and more black and light parts stay open
+    /// (default: none, the paper's even tone). Beyond the paper (§5.6: the
+    /// largest region is always filled next, no global contrast).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tone: Option<ToneSpec>,
     /// Lines (polylines, mm, ≥ 2 points each) drawn first: they split the
     /// region as a pen line does.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -86,6 +106,40 @@ pub struct ZentangleSpec {
     /// default 0.5).
     #[serde(default = "default_hatch")]
     pub hatch: f64,
+}
+
+/// A target darkness (0 white – 1 black) over the region, from a picture,
+/// a formula or both multiplied. A region is filled in order of its
+/// largest inscribed circle times its weight, `1 − contrast + contrast ×
+/// darkness` at the circle's centre; it is left white once that product
+/// falls below `smallest`; and its black elements and black-painted
+/// grounds are `(1 − contrast + contrast × 2 × darkness)` times as likely
+/// as the paper's.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToneSpec {
+    /// A PNG or JPEG (relative to the description), fitted to the
+    /// region's bounding box, aspect kept, centred.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image: Option<String>,
+    /// A formula of the position: `x`, `y` in mm, `u`, `v` 0–1 across the
+    /// region's bounding box, clamped to 0–1; e.g. `"v"` (dark at the
+    /// bottom) or `"1 - 2 * abs(u - 0.5)"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub formula: Option<String>,
+    /// How strongly the darkness steers the loop (0–1, default 0.9): 0
+    /// not at all (the paper's order); 1 fully, so that where the target
+    /// is white nothing is drawn.
+    #[serde(default = "default_contrast")]
+    pub contrast: f64,
+}
+
+fn default_branching() -> u32 {
+    2
+}
+
+fn default_contrast() -> f64 {
+    0.9
 }
 
 /// One step chosen by hand: the white region under `at` gets `procedure`.
@@ -121,6 +175,10 @@ pub const PROCEDURES: u32 = 20;
 
 /// The most filling steps of one table.
 pub const MAX_STEPS: u32 = 5000;
+
+/// The deepest ML plants branch (`branching`): beyond it the twigs are
+/// shorter than their leaves.
+const MAX_BRANCHING: u32 = 3;
 
 /// The elements, by the paper's names: the basic shapes of its figure 4
 /// and the compound ones of figure 7 (and `mtr2`, `msq3`, which its table
@@ -169,6 +227,9 @@ impl Default for ZentangleSpec {
             wobble: default_wobble(),
             hand: 0.0,
             retrace: 0.0,
+            follow: 0.0,
+            branching: default_branching(),
+            tone: None,
             lines: Vec::new(),
             manual: Vec::new(),
             black: Black::default(),
@@ -213,6 +274,11 @@ impl Family for ZentangleSpec {
         range(&format!("{f}.wobble"), self.wobble, 0.0, 2.0)?;
         range(&format!("{f}.hand"), self.hand, 0.0, 2.0)?;
         range(&format!("{f}.retrace"), self.retrace, 0.0, 1.0)?;
+        range(&format!("{f}.follow"), self.follow, 0.0, 1.0)?;
+        range(&format!("{f}.branching"), self.branching, 0, MAX_BRANCHING)?;
+        if let Some(tone) = &self.tone {
+            tone.check(&format!("{f}.tone"))?;
+        }
         for (i, line) in self.lines.iter().enumerate() {
             points(&format!("{f}.lines[{i}]"), line, 2)?;
         }
@@ -238,10 +304,36 @@ impl Family for ZentangleSpec {
     }
 
     fn image_files(&self) -> Vec<&str> {
-        self.region.image.as_deref().into_iter().collect()
+        self.region
+            .image
+            .as_deref()
+            .into_iter()
+            .chain(self.tone.as_ref().and_then(|t| t.image.as_deref()))
+            .collect()
     }
 
     fn layers_read(&self) -> Vec<(&'static str, &str)> {
         self.region.layers_read()
+    }
+}
+
+impl ToneSpec {
+    fn check(&self, f: &str) -> Result<()> {
+        if self.image.is_none() && self.formula.is_none() {
+            return Err(Error::invalid(
+                f,
+                "needs an `image`, a `formula` or both: the darkness to aim at",
+            ));
+        }
+        if self.image.as_deref().is_some_and(|i| i.trim().is_empty()) {
+            return Err(Error::invalid(format!("{f}.image"), "needs a file name"));
+        }
+        if let Some(text) = &self.formula {
+            Formula::parse(text).map_err(|e| match e {
+                Error::Invalid { message, .. } => Error::invalid(format!("{f}.formula"), message),
+                other => other,
+            })?;
+        }
+        range(&format!("{f}.contrast"), self.contrast, 0.0, 1.0)
     }
 }

@@ -30,6 +30,9 @@ struct Area {
     seed: Option<u32>,
     pole: Point,
     radius: f64,
+    /// How much more (or less) black its procedure paints than the
+    /// paper's (1 without tone control).
+    black: f64,
 }
 
 /// What one step drew.
@@ -44,8 +47,8 @@ pub(super) struct Step {
 }
 
 /// How the loop draws.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Settings {
+#[derive(Clone, Copy)]
+pub(super) struct Settings<'a> {
     /// Element size as a fraction of √(box area).
     pub(super) scale: f64,
     /// Regions narrower than this (inscribed radius, mm) are left white.
@@ -58,22 +61,29 @@ pub(super) struct Settings {
     pub(super) retrace: f64,
     /// The pen's width, mm.
     pub(super) pen: f64,
+    /// How often lattices follow the outline (0–1).
+    pub(super) follow: f64,
+    /// How deep ML plants branch (0: a single stem).
+    pub(super) branching: u32,
+    /// The target darkness (0–1) at a point, with how strongly it steers
+    /// the loop (0–1); `None`: the paper's even tone.
+    pub(super) tone: Option<(&'a dyn Fn(Point) -> f64, f64)>,
 }
 
 /// The loop's state.
-pub(super) struct Filling {
+pub(super) struct Filling<'a> {
     areas: Vec<Option<Area>>,
-    /// By inscribed radius (as ordered bits, radii being ≥ 0), the oldest
-    /// first among equals.
+    /// By inscribed radius times the tone's weight (as ordered bits, both
+    /// being ≥ 0), the oldest first among equals.
     queue: BinaryHeap<(u64, Reverse<usize>)>,
     allowed: Allowed,
-    settings: Settings,
+    settings: Settings<'a>,
     /// The per-stroke bending's own numbers, so that turning it on
     /// changes how the lines are drawn, not what is drawn.
     hand: RandomStream,
 }
 
-impl Filling {
+impl<'a> Filling<'a> {
     /// The blank `regions` (each a white region of its own, as the
     /// sections a string makes), split by `lines` (drawn as the first
     /// step); `hand` draws the per-stroke bending.
@@ -81,9 +91,9 @@ impl Filling {
         regions: &[Region],
         lines: Vec<BezPath>,
         allowed: Allowed,
-        settings: Settings,
+        settings: Settings<'a>,
         hand: RandomStream,
-    ) -> Result<(Filling, Step)> {
+    ) -> Result<(Filling<'a>, Step)> {
         let pen = settings.pen;
         let mut filling = Filling {
             areas: Vec::new(),
@@ -116,7 +126,20 @@ impl Filling {
         let Some((pole, radius)) = pole_of_inaccessibility(&region, precision) else {
             return;
         };
-        if radius < self.settings.smallest {
+        // Tone control: a region counts as narrower where the target is
+        // light, so it waits, and stays white once it counts as too
+        // narrow; where it is dark, black is likelier.
+        let (weight, black) = match self.settings.tone {
+            None => (1.0, 1.0),
+            Some((tone, contrast)) => {
+                let dark = tone(pole).clamp(0.0, 1.0);
+                (
+                    1.0 - contrast + contrast * dark,
+                    1.0 - contrast + contrast * 2.0 * dark,
+                )
+            }
+        };
+        if radius * weight < self.settings.smallest {
             return;
         }
         let id = self.areas.len();
@@ -125,12 +148,14 @@ impl Filling {
             seed,
             pole,
             radius,
+            black,
         }));
-        self.queue.push((radius.to_bits(), Reverse(id)));
+        self.queue.push(((radius * weight).to_bits(), Reverse(id)));
     }
 
     /// The region the next automatic step will draw in, and the radius
-    /// of its largest inscribed circle.
+    /// of its largest inscribed circle (the widest region, without tone
+    /// control).
     #[cfg(test)]
     pub(super) fn widest(&self) -> Option<(Region, f64)> {
         let mut queue = self.queue.clone();
@@ -218,6 +243,8 @@ impl Filling {
             wobble,
             hand,
             pen,
+            follow,
+            branching,
             ..
         } = self.settings;
         let target = Target {
@@ -227,6 +254,10 @@ impl Filling {
             size: scale * b.area().sqrt(),
             wobble,
             pen,
+            follow,
+            branching,
+            black: area.black,
+            tone: self.settings.tone,
         };
         let mut drawn = draw(procedure, &target, &self.allowed, rng)?;
         if hand > 0.0 {

@@ -29,6 +29,8 @@ use kurbo::{BezPath, Point};
 use super::region::regions;
 use super::Context;
 use crate::error::{Error, Result};
+use crate::geom::density::{Density, Formula};
+use crate::geom::region::Region;
 use crate::scene::{Color, Group, Style};
 use crate::spec::{Black, ZentangleSpec, ELEMENTS, PROCEDURES};
 use element::Shape;
@@ -56,6 +58,30 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
     debug_assert!(ELEMENTS.iter().all(|n| Shape::from_name(n).is_some()));
     let lines: Vec<BezPath> = spec.lines.iter().map(|l| polyline(l)).collect();
     let pen = cx.pen_width();
+    let formula = match spec.tone.as_ref().and_then(|t| t.formula.as_deref()) {
+        Some(text) => Some(Formula::parse(text).map_err(|e| match e {
+            Error::Invalid { message, .. } => Error::invalid(cx.field("tone.formula"), message),
+            other => other,
+        })?),
+        None => None,
+    };
+    let image = match spec.tone.as_ref().and_then(|t| t.image.as_deref()) {
+        Some(name) => Some(cx.library().image(name)?),
+        None => None,
+    };
+    let frame = regions
+        .iter()
+        .map(Region::bounds)
+        .reduce(|a, b| a.union(b))
+        .unwrap_or_default();
+    let mut darkness = Density::new(frame);
+    if let Some(img) = image {
+        darkness = darkness.with_image(img);
+    }
+    if let Some(f) = &formula {
+        darkness = darkness.with_formula(f);
+    }
+    let tone = |p: Point| darkness.at(p);
     let settings = Settings {
         scale: spec.scale,
         smallest: spec.smallest,
@@ -63,6 +89,12 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         hand: spec.hand,
         retrace: spec.retrace,
         pen,
+        follow: spec.follow,
+        branching: spec.branching,
+        tone: spec
+            .tone
+            .as_ref()
+            .map(|t| (&tone as &dyn Fn(Point) -> f64, t.contrast)),
     };
     let hand = cx.stream(&format!("{group_id}/hand"));
     let (mut filling, first) = Filling::new(&regions, lines, allowed, settings, hand)?;

@@ -26,6 +26,10 @@
 //!   node (and branches of those), with their own alternating leaves (slot
 //!   b), and a leaf at every tip.
 //!
+//! Beyond the paper (its §5.6: patterns not mapped to the region's
+//! shape), [`along_contours`] lays MT, MS and MA along the region's
+//! outline instead of on a lattice: rows that bend with it.
+//!
 //! Lattices are anchored at a given centre (the region's box centre plus
 //! the procedure's jitter, SPEC §2.4) and cover the box: every instance
 //! whose square meets the box is returned, so that clipping to the region
@@ -34,15 +38,17 @@
 //! neighbours; multiply on the right by `Affine::scale(k)`, `k < 1`, to
 //! leave gaps).
 
+use std::collections::BTreeMap;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use kurbo::{Affine, BezPath, Point, Rect, Vec2};
+use kurbo::{Affine, BezPath, Point, Rect, Shape as _, Vec2};
 
 use super::element::UNIT;
 use crate::error::{Error, Result};
+use crate::geom::offset::offset;
 use crate::geom::region::Region;
 use crate::geom::sample::poisson_disk;
-use crate::geom::PathWalker;
+use crate::geom::{PathWalker, TOLERANCE};
 use crate::rng::RandomStream;
 
 /// The most instances one template places: a box holding more elements
@@ -295,12 +301,18 @@ pub(crate) fn rotational(
 /// ML: a branch growing up `bounds` from the middle of its bottom side,
 /// with leaves about `size` long (shrinking towards the tips), alternating
 /// sides along each stem; every third node of a stem starts a side branch
-/// instead of a leaf (on the main stem and its branches, not deeper). Random: the stems'
-/// sway, the leaves' angles (35°–55° off the stem) and the branches'.
+/// instead of a leaf, down to `branching` levels below the main stem (0:
+/// the paper's single stem). Random: the stems' sway, the leaves' angles
+/// (35°–55° off the stem) and the branches'.
 ///
 /// # Errors
 /// As [`triangles`].
-pub(crate) fn plant(bounds: Rect, size: f64, rng: &mut RandomStream) -> Result<Plant> {
+pub(crate) fn plant(
+    bounds: Rect,
+    size: f64,
+    branching: u32,
+    rng: &mut RandomStream,
+) -> Result<Plant> {
     check(bounds, size)?;
     let b = bounds.abs();
     let base = Point::new(b.center().x, b.y1);
@@ -309,22 +321,37 @@ pub(crate) fn plant(bounds: Rect, size: f64, rng: &mut RandomStream) -> Result<P
         stems: Vec::new(),
         leaves: Vec::new(),
     };
-    grow(&mut plant, base, Vec2::new(0.0, -1.0), length, size, 0, rng);
+    let stem = Stem {
+        base,
+        dir: Vec2::new(0.0, -1.0),
+        length,
+        size,
+    };
+    grow(&mut plant, stem, 0, branching, rng);
     Ok(plant)
 }
 
-/// Side branches grow at most this deep (the main stem is depth 0).
-const MAX_BRANCH_DEPTH: u32 = 2;
-
-/// Grows one stem from `base` in the unit direction `dir`, `length` long,
-/// with its leaves and (below [`MAX_BRANCH_DEPTH`]) its side branches.
-fn grow(
-    plant: &mut Plant,
+/// One stem of a plant: where it starts, its unit direction, its length
+/// and the size of its leaves.
+struct Stem {
     base: Point,
     dir: Vec2,
     length: f64,
     size: f64,
+}
+
+/// Grows one stem `depth` levels below the main stem, with its leaves and
+/// (above `deepest`) its side branches.
+fn grow(
+    plant: &mut Plant,
+    Stem {
+        base,
+        dir,
+        length,
+        size,
+    }: Stem,
     depth: u32,
+    deepest: u32,
     rng: &mut RandomStream,
 ) {
     // One cubic whose inner control points sway sideways.
@@ -354,10 +381,15 @@ fn grow(
         let leaf = size * (1.0 - 0.4 * s / total);
         let turn = rng.range(35f64.to_radians(), 55f64.to_radians());
         let out = rotate(t, if left { -turn } else { turn });
-        if depth < MAX_BRANCH_DEPTH && n % 3 == 2 {
-            let branch = 0.6 * (total - s);
-            if branch > spacing {
-                grow(plant, p, out, branch, leaf * 0.8, depth + 1, rng);
+        if depth < deepest && n % 3 == 2 {
+            let branch = Stem {
+                base: p,
+                dir: out,
+                length: 0.6 * (total - s),
+                size: leaf * 0.8,
+            };
+            if branch.length > spacing {
+                grow(plant, branch, depth + 1, deepest, rng);
             }
         } else {
             plant.leaves.push(leaf_at(p, out, leaf, slot));
@@ -390,11 +422,139 @@ fn leaf_at(base: Point, dir: Vec2, length: f64, slot: Slot) -> Placed {
     }
 }
 
+/// Which lattice [`along_contours`] bends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Lattice {
+    /// MT: triangles half a step apart, slot a pointing out towards the
+    /// outline and slot b, turned half a turn, pointing in.
+    Triangles,
+    /// MS: slot a a step apart.
+    Squares,
+    /// MA: slots a and b alternating a step apart.
+    Rows,
+}
+
+/// Rows that follow the region's shape: rings inset from its outline by
+/// half a step, one and a half, … (around its holes too, and splitting
+/// where it narrows), each holding elements of side `size` evenly along
+/// it, turned so that their tops face the outline, in the order
+/// `lattice` says. A ring too short for three elements holds one, at its
+/// middle. Where rings from two edges meet (across a narrow part, or
+/// between the outline and a hole) an element closer than 0.8 `size` to
+/// one of another ring laid before it is left out, so rows never pile up.
+///
+/// # Errors
+/// As [`triangles`]; from the offsetting on degenerate geometry.
+pub(crate) fn along_contours(region: &Region, size: f64, lattice: Lattice) -> Result<Vec<Placed>> {
+    check(region.bounds(), size)?;
+    let spacing = match lattice {
+        Lattice::Triangles => size / 2.0,
+        Lattice::Squares | Lattice::Rows => size,
+    };
+    let mut out = Vec::new();
+    let mut laid = Laid::new(0.8 * size);
+    let mut row = 0;
+    for k in 0.. {
+        let ring = offset(region, -(k as f64 + 0.5) * size, TOLERANCE)?;
+        if ring.is_empty() {
+            break;
+        }
+        for contour in ring.polygons(TOLERANCE) {
+            row += 1;
+            let mut keep = |p: Placed, out: &mut Vec<Placed>| {
+                if laid.free(p.centre(), row) {
+                    out.push(p);
+                }
+            };
+            let mut path = BezPath::new();
+            path.move_to(contour[0]);
+            for p in &contour[1..] {
+                path.line_to(*p);
+            }
+            path.close_path();
+            let walker = PathWalker::new(&path, TOLERANCE);
+            let n = (walker.length() / spacing).floor() as usize;
+            if n < 3 {
+                let middle = path.bounding_box().center();
+                keep(Placed::new(middle, size, 0.0, Slot::A), &mut out);
+                continue;
+            }
+            let every = walker.length() / n as f64;
+            for i in 0..n {
+                let s = (i as f64 + 0.5) * every;
+                let at = walker.point_at(s);
+                let normal = walker.tangent_at(s).turn_90();
+                // Outwards is whichever side leaves the ring (a contour's
+                // winding says nothing once offset and split).
+                let outward = if ring.contains(at + normal * (0.05 * size)) {
+                    -normal
+                } else {
+                    normal
+                };
+                // The element's top (−y in its square) turned onto it.
+                let up = outward.atan2() + FRAC_PI_2;
+                let (slot, turn) = match (lattice, i % 2) {
+                    (Lattice::Triangles, 1) => (Slot::B, PI),
+                    (Lattice::Rows, 1) => (Slot::B, 0.0),
+                    _ => (Slot::A, 0.0),
+                };
+                keep(Placed::new(at, size, up + turn, slot), &mut out);
+            }
+        }
+        if out.len() > MAX_INSTANCES {
+            return Err(Error::invalid(
+                "placement.size",
+                format!("{size} mm lays more than {MAX_INSTANCES} elements along the outline"),
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// The centres laid so far, on a grid of cells `apart` wide, with the row
+/// each belongs to.
+struct Laid {
+    apart: f64,
+    cells: BTreeMap<(i64, i64), Vec<(Point, usize)>>,
+}
+
+impl Laid {
+    fn new(apart: f64) -> Laid {
+        Laid {
+            apart,
+            cells: BTreeMap::new(),
+        }
+    }
+
+    fn cell(&self, p: Point) -> (i64, i64) {
+        (
+            (p.x / self.apart).floor() as i64,
+            (p.y / self.apart).floor() as i64,
+        )
+    }
+
+    /// Whether `p` of `row` is at least `apart` from every centre of
+    /// another row; if so it is laid.
+    fn free(&mut self, p: Point, row: usize) -> bool {
+        let (i, j) = self.cell(p);
+        let crowded = (i - 1..=i + 1)
+            .flat_map(|a| (j - 1..=j + 1).map(move |b| (a, b)))
+            .filter_map(|c| self.cells.get(&c))
+            .flatten()
+            .any(|&(q, r)| r != row && q.distance(p) < self.apart);
+        if !crowded {
+            self.cells.entry((i, j)).or_default().push((p, row));
+        }
+        !crowded
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::region::FillRule;
     use crate::rng::Seed;
-    use kurbo::{ParamCurve, ParamCurveDeriv, ParamCurveNearest, Shape as _};
+    use kurbo::{ParamCurve, ParamCurveDeriv, ParamCurveNearest};
 
     fn boxed() -> Rect {
         Rect::new(0.0, 0.0, 120.0, 90.0)
@@ -414,6 +574,57 @@ mod tests {
             .copied()
             .filter(|p| inner.contains(p.centre()))
             .collect()
+    }
+
+    #[test]
+    fn rows_along_contours_follow_the_outline_and_face_it() {
+        // A disc of radius 30 less a hole of radius 8: rings at 28, 24, …
+        // around the outside, and outward from the hole's edge, at 10, 14.
+        let c = Point::new(50.0, 40.0);
+        let disc =
+            Region::new(kurbo::Circle::new(c, 30.0).to_path(1e-4), FillRule::NonZero).unwrap();
+        let hole =
+            Region::new(kurbo::Circle::new(c, 8.0).to_path(1e-4), FillRule::NonZero).unwrap();
+        let ring = disc.difference(&hole);
+        for lattice in [Lattice::Triangles, Lattice::Squares, Lattice::Rows] {
+            let set = along_contours(&ring, 4.0, lattice).unwrap();
+            assert!(set.len() > 60, "{lattice:?}: {}", set.len());
+            let (mut a, mut b) = (0usize, 0usize);
+            for p in &set {
+                let r = p.centre().distance(c);
+                // Half a step, one and a half, … from the outline or the
+                // hole's edge.
+                let from_edge = (30.0 - r).min(r - 8.0);
+                let k = (from_edge / 4.0 - 0.5).round();
+                assert!(
+                    (from_edge - (k + 0.5) * 4.0).abs() < 0.05,
+                    "{lattice:?}: {r} from the centre"
+                );
+                // Its top faces the nearer edge (slot b of triangles the
+                // other way).
+                let top = p.at * Point::new(0.0, -1.0) - p.centre();
+                let radial = (p.centre() - c).normalize();
+                let out = if 30.0 - r < r - 8.0 { 1.0 } else { -1.0 };
+                let flip = if lattice == Lattice::Triangles && p.slot == Slot::B {
+                    -1.0
+                } else {
+                    1.0
+                };
+                assert!(
+                    top.normalize().dot(radial) * out * flip > 0.999,
+                    "{lattice:?}: faces {top:?} at {:?}",
+                    p.centre()
+                );
+                match p.slot {
+                    Slot::A => a += 1,
+                    _ => b += 1,
+                }
+            }
+            match lattice {
+                Lattice::Squares => assert_eq!(b, 0),
+                _ => assert!(a.abs_diff(b) <= set.len() / 10, "{lattice:?}: {a} a, {b} b"),
+            }
+        }
     }
 
     #[test]
@@ -565,7 +776,7 @@ mod tests {
     #[test]
     fn plants_alternate_their_leaves_along_their_stems() {
         let bounds = Rect::new(0.0, 0.0, 60.0, 100.0);
-        let plant = plant(bounds, 9.0, &mut Seed(2).stream()).unwrap();
+        let plant = plant(bounds, 9.0, 2, &mut Seed(2).stream()).unwrap();
         assert!(plant.stems.len() >= 3, "{}", plant.stems.len());
         assert!(plant.leaves.len() > 15);
         // Each stem is one cubic.
@@ -608,8 +819,39 @@ mod tests {
             .stems
             .iter()
             .all(|s| s.bounding_box().overlaps(bounds)));
-        let again = super::plant(bounds, 9.0, &mut Seed(2).stream()).unwrap();
+        let again = super::plant(bounds, 9.0, 2, &mut Seed(2).stream()).unwrap();
         assert_eq!(plant, again);
+    }
+
+    #[test]
+    fn branching_sets_how_deep_plants_branch() {
+        let bounds = Rect::new(0.0, 0.0, 60.0, 140.0);
+        // How deep each stem starts: 0 for the main one, one more for a
+        // branch of it.
+        let depths = |branching: u32| -> Vec<u32> {
+            let plant = plant(bounds, 9.0, branching, &mut Seed(4).stream()).unwrap();
+            let mut depth: Vec<u32> = vec![0];
+            for k in 1..plant.stems.len() {
+                let start = plant.stems[k].segments().next().unwrap().start();
+                let parent = (0..k)
+                    .find(|&j| {
+                        let c = plant.stems[j].segments().next().unwrap().to_cubic();
+                        c.nearest(start, 1e-12).distance_sq < 1e-12
+                    })
+                    .expect("a branch starts on an earlier stem");
+                depth.push(depth[parent] + 1);
+            }
+            depth
+        };
+        // The paper's plant: one stem, a leaf at every node.
+        assert_eq!(depths(0), vec![0]);
+        let single = plant(bounds, 9.0, 0, &mut Seed(4).stream()).unwrap();
+        assert!(single.leaves.len() >= 12, "{}", single.leaves.len());
+        for branching in 1..=3 {
+            let d = depths(branching);
+            assert_eq!(d.iter().max(), Some(&branching), "{d:?}");
+        }
+        assert!(depths(2).len() > depths(1).len());
     }
 
     #[test]
@@ -622,6 +864,6 @@ mod tests {
         assert!(squares(Rect::new(0.0, 0.0, f64::NAN, 5.0), c, 1.0).is_err());
         let e = squares(boxed(), c, 0.01).unwrap_err().to_string();
         assert!(e.contains("more than 100000 elements"), "{e}");
-        assert!(plant(boxed(), -2.0, &mut Seed(1).stream()).is_err());
+        assert!(plant(boxed(), -2.0, 2, &mut Seed(1).stream()).is_err());
     }
 }

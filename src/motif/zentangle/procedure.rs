@@ -9,7 +9,7 @@ use kurbo::{Affine, Point, Vec2};
 
 use super::element::{self, marks, Mark, Paint, Shape};
 use super::pattern;
-use super::placement;
+use super::placement::{self, Lattice};
 use crate::error::Result;
 use crate::geom::region::Region;
 use crate::geom::TOLERANCE;
@@ -155,7 +155,7 @@ impl Allowed {
 }
 
 /// Where a procedure draws.
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone, Copy)]
 pub(super) struct Target<'a> {
     /// The white region.
     pub(super) region: &'a Region,
@@ -170,6 +170,50 @@ pub(super) struct Target<'a> {
     pub(super) wobble: f64,
     /// The pen's width, mm.
     pub(super) pen: f64,
+    /// How often the lattices MT, MS and MA lay their rows along the
+    /// region's outline instead (0–1).
+    pub(super) follow: f64,
+    /// How deep ML plants branch (0: the paper's single stem).
+    pub(super) branching: u32,
+    /// How many times the paper's chance of black elements and black
+    /// grounds (tone control, at the region's widest point; 1: the
+    /// paper's).
+    pub(super) black: f64,
+    /// The target darkness (0–1) at a point and how strongly it steers
+    /// (tone control; `None`: the paper's even tone).
+    pub(super) tone: Option<(&'a dyn Fn(Point) -> f64, f64)>,
+}
+
+impl Target<'_> {
+    /// Whether an element at `at` is drawn: always without tone control;
+    /// with it, where the target is lighter than mid-grey elements thin
+    /// out (to `1 − contrast` of them on white), so a lattice fades.
+    fn keeps(&self, at: Point, rng: &mut RandomStream) -> bool {
+        match self.tone {
+            None => true,
+            Some((tone, contrast)) => {
+                let dark = tone(at).clamp(0.0, 1.0);
+                rng.unit() < 1.0 - contrast + contrast * (2.0 * dark).min(1.0)
+            }
+        }
+    }
+
+    /// The paint of an element at `at` whose slot says `paint`: the
+    /// slot's without tone control; with it, a black one turns white
+    /// where the target is lighter than mid-grey (always on white, at full
+    /// contrast) and a white one black where it is darker (half of them
+    /// on black).
+    fn paint_at(&self, at: Point, paint: Paint, rng: &mut RandomStream) -> Paint {
+        let Some((tone, contrast)) = self.tone else {
+            return paint;
+        };
+        let dark = tone(at).clamp(0.0, 1.0);
+        match paint {
+            Paint::Black if rng.unit() < contrast * (1.0 - 2.0 * dark).max(0.0) => Paint::White,
+            Paint::White if rng.unit() < contrast * (dark - 0.5).max(0.0) => Paint::Black,
+            other => other,
+        }
+    }
 }
 
 /// What a procedure drew: marks in painter's order (page mm) and, for
@@ -237,7 +281,7 @@ pub(super) fn draw(
         }
         4 | 5 | 6 | 8 | 9 | 10 | 12 | 13 => {
             // (¹) With probability 1/3 the region is painted black first.
-            if matches!(id, 4 | 8) && rng.unit() < 1.0 / 3.0 {
+            if matches!(id, 4 | 8) && rng.unit() < t.black / 3.0 {
                 let all = Mark {
                     path: t.region.path().clone(),
                     paint: Paint::Black,
@@ -246,7 +290,14 @@ pub(super) fn draw(
             }
             let step = 0.6 * t.size;
             let b = t.region.bounds();
+            // Beyond the paper: a lattice bent along the outline. The
+            // stream is drawn from only when it may be, so `follow = 0`
+            // draws the paper's patterns number for number.
+            let follow = matches!(id, 5 | 6 | 9 | 10) && t.follow > 0.0 && rng.unit() < t.follow;
             let instances = match id {
+                5 if follow => placement::along_contours(t.region, step, Lattice::Triangles)?,
+                6 if follow => placement::along_contours(t.region, step, Lattice::Squares)?,
+                9 | 10 if follow => placement::along_contours(t.region, step, Lattice::Rows)?,
                 4 | 8 | 12 => placement::scatter(t.region, step, rng)?,
                 5 => placement::triangles(b, centre, step)?,
                 6 => placement::squares(b, centre, step)?,
@@ -259,7 +310,7 @@ pub(super) fn draw(
                     let shape = allowed.element(set, rng);
                     let paint = if !shape.is_closed() {
                         Paint::Line
-                    } else if rng.unit() < 0.75 {
+                    } else if rng.unit() < 1.0 - 0.25 * t.black {
                         Paint::White
                     } else {
                         Paint::Black
@@ -276,16 +327,22 @@ pub(super) fn draw(
                         .any(|&(x, y)| t.region.contains(c + Vec2::new(x, y) * (step / 2.0)))
             };
             for p in instances.into_iter().filter(|p| near(p.centre())) {
+                if !t.keeps(p.centre(), rng) {
+                    continue;
+                }
                 let (shape, paint) = if id == 12 {
                     // E4 with repetition: any curve in any slot.
                     (allowed.element(set, rng), Paint::Line)
                 } else {
                     slots[p.slot as usize]
                 };
+                let paint = t.paint_at(p.centre(), paint, rng);
                 // A little apart, as a hand leaves them.
                 let mut at = p.at * Affine::scale(GAP);
                 match id {
-                    // (³) Turned at random before placement.
+                    // (³) Turned at random before placement; by quarter
+                    // turns in a row along the outline, which it keeps.
+                    10 if follow => at *= Affine::rotate((rng.unit() * 4.0).floor() * PI / 2.0),
                     10 | 12 => at *= Affine::rotate(rng.unit() * TAU),
                     // (²) Stretched across and turned.
                     8 => {
@@ -300,7 +357,7 @@ pub(super) fn draw(
         }
         7 => {
             let leaf = 0.3 * t.size;
-            let plant = placement::plant(t.region.bounds(), leaf, rng)?;
+            let plant = placement::plant(t.region.bounds(), leaf, t.branching, rng)?;
             let lines = plant
                 .stems
                 .into_iter()
@@ -388,4 +445,118 @@ fn placed(
         unit
     };
     Ok(unit.iter().map(|m| m.transformed(at)).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use kurbo::{Circle, Shape as _};
+
+    use super::*;
+    use crate::geom::region::FillRule;
+    use crate::rng::Seed;
+
+    /// Procedure 6 (MS) with plain squares in a disc of radius 40, with
+    /// `follow` as given.
+    fn squares_in_a_disc(follow: f64) -> (Vec<Mark>, f64) {
+        let c = Point::new(50.0, 50.0);
+        let disc = Region::new(Circle::new(c, 40.0).to_path(1e-4), FillRule::NonZero).unwrap();
+        let size = 0.35 * disc.bounds().area().sqrt();
+        let t = Target {
+            region: &disc,
+            pole: c,
+            radius: 40.0,
+            size,
+            wobble: 0.0,
+            pen: 0.3,
+            follow,
+            branching: 2,
+            black: 1.0,
+            tone: None,
+        };
+        let allowed = Allowed {
+            procedures: vec![6],
+            elements: vec![Shape::Sq],
+        };
+        let mut rng = Seed(2).derive("p6").stream();
+        (draw(6, &t, &allowed, &mut rng).unwrap().marks, 0.6 * size)
+    }
+
+    #[test]
+    fn lattices_follow_the_outline_when_asked() {
+        let c = Point::new(50.0, 50.0);
+        // On the lattice, squares stand upright wherever they are.
+        let (marks, _) = squares_in_a_disc(0.0);
+        assert!(marks.iter().all(|m| {
+            let b = m.path.bounding_box();
+            (b.width() - b.height()).abs() < 1e-6 && m.path.elements().len() <= 6
+        }));
+        let upright = |m: &Mark| {
+            let b = m.path.bounding_box();
+            let area = m.path.area().abs();
+            (area - b.area()).abs() < 1e-6 * b.area()
+        };
+        assert!(marks.iter().all(upright));
+        // Along the outline: on rings half a step, one and a half … in,
+        // turned to face it (so most are not upright).
+        let (marks, step) = squares_in_a_disc(1.0);
+        assert!(marks.len() >= 12, "{}", marks.len());
+        let mut turned = 0;
+        for m in &marks {
+            let centre = m.path.bounding_box().center();
+            let depth = 40.0 - centre.distance(c);
+            let k = (depth / step - 0.5).round();
+            assert!(
+                (depth - (k + 0.5) * step).abs() < 0.01 * step || centre.distance(c) < step,
+                "a square {depth} mm in, rings are {step} mm apart"
+            );
+            turned += usize::from(!upright(m));
+        }
+        assert!(
+            turned > marks.len() / 2,
+            "{turned} of {} turned",
+            marks.len()
+        );
+    }
+
+    /// Ink in the left and right thirds of an A5 page: the length of the
+    /// lines plus the black area (as the pen would hatch it, 0.3 mm
+    /// apart).
+    fn ink_by_side(table: &str) -> (f64, f64) {
+        let scene = crate::motif::test_scene::scene("zentangle", table);
+        let width = scene.page.drawable().width();
+        let (mut left, mut right) = (0.0, 0.0);
+        scene.layers[0]
+            .content
+            .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+                let path = t * p.path.clone();
+                let x = path.bounding_box().center().x;
+                let ink = if p.style.fill.is_some() {
+                    path.area().abs() / 0.3
+                } else {
+                    path.perimeter(0.01)
+                };
+                if x < width / 3.0 {
+                    left += ink;
+                } else if x > 2.0 * width / 3.0 {
+                    right += ink;
+                }
+            });
+        (left, right)
+    }
+
+    #[test]
+    fn a_tone_map_puts_more_ink_where_it_is_dark() {
+        // Without tone the two sides get about the same; with the
+        // target dark on the right, the right gets far more.
+        let (l0, r0) = ink_by_side("steps = 80\n");
+        assert!(
+            r0 < 2.0 * l0 && l0 < 2.0 * r0,
+            "untoned: {l0:.0} left, {r0:.0} right"
+        );
+        let (l1, r1) = ink_by_side("steps = 80\ntone = { formula = \"u\" }\n");
+        assert!(r1 > 4.0 * l1, "toned: {l1:.0} left, {r1:.0} right");
+        // Full contrast leaves the white end of the page all but empty.
+        let (l2, r2) = ink_by_side("steps = 80\ntone = { formula = \"u\", contrast = 1 }\n");
+        assert!(r2 > 5.0 * l2, "full contrast: {l2:.0} left, {r2:.0} right");
+    }
 }

@@ -70,6 +70,9 @@ fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
         hand: 0.4,
         retrace: 0.2,
         pen,
+        follow: 0.0,
+        branching: 2,
+        tone: None,
     };
     let hand = Seed(11).derive("hand").stream();
     let (mut filling, _) = Filling::new(&[page], Vec::new(), all(), settings, hand).unwrap();
@@ -169,6 +172,28 @@ fn bad_tables_are_refused_with_their_field() {
             "layers[0].zentangle[0].lines[0]",
         ),
         ("wobble = nan\n", "layers[0].zentangle[0].wobble"),
+        ("follow = 1.5\n", "layers[0].zentangle[0].follow: must be between 0 and 1"),
+        ("branching = 4\n", "layers[0].zentangle[0].branching: must be between 0 and 3"),
+        (
+            "tone = { contrast = 0.5 }\n",
+            "layers[0].zentangle[0].tone: needs an `image`, a `formula` or both",
+        ),
+        (
+            "tone = { formula = \"u +\" }\n",
+            "layers[0].zentangle[0].tone.formula",
+        ),
+        (
+            "tone = { formula = \"w\" }\n",
+            "layers[0].zentangle[0].tone.formula",
+        ),
+        (
+            "tone = { formula = \"u\", contrast = 2 }\n",
+            "layers[0].zentangle[0].tone.contrast: must be between 0 and 1",
+        ),
+        (
+            "tone = { image = \"missing.png\" }\n",
+            "missing.png",
+        ),
     ] {
         let e = error(table);
         assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
