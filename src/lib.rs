@@ -1,5 +1,6 @@
 //! moyo (模様, "pattern") generates ornamental line art — kimono plant
-//! patterns first — as Bézier paths in a scene graph, and writes layered SVG
+//! patterns, zentangle fills, Voronoi patterns, L-systems — as Bézier
+//! paths in a scene graph, and writes layered SVG
 //! that a pen plotter or cutter can run as is, plus PNG previews.
 //!
 //! Data flows one way:
@@ -49,7 +50,8 @@
 //! build one in code), [`plot`] the plot stages and their options,
 //! [`output`] the writers (SVG, PNG, G-code, HPGL, path dump), [`input`]
 //! SVG import, [`geom`] the geometry toolkit (regions, clipping, offsets,
-//! splines), [`motif`] the motif library, [`templates`] the built-in
+//! splines), [`lsystem`] the L-system engine (rules, turtle, the
+//! stroke-guided sketch), [`motif`] the motif library, [`templates`] the built-in
 //! scenes, [`units`] paper sizes and lengths. Without the default `cli`
 //! feature the crate is the library alone.
 
@@ -65,6 +67,7 @@ use {clap as _, indicatif as _};
 mod error;
 pub mod geom;
 pub mod input;
+pub mod lsystem;
 pub mod motif;
 pub mod output;
 pub mod plot;

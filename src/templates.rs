@@ -56,6 +56,18 @@ pub const ALL: &[Template] = templates![
     "zentangle-voronoi",
     "kimono-tangles",
     "delaunay-lowpoly",
+    "lsystem-plant-a",
+    "lsystem-plant-d",
+    "lsystem-plant-f",
+    "lsystem-koch",
+    "lsystem-hilbert",
+    "lsystem-dragon",
+    "lsystem-bush",
+    "lsystem-tree",
+    "lsystem-ternary",
+    "lsystem-sketch-straight",
+    "lsystem-sketch-s",
+    "lsystem-sketch-spiral",
 ];
 
 impl Template {

@@ -11,6 +11,7 @@ mod determinism;
 mod fill_cli;
 mod golden;
 mod kimono;
+mod lsystem_cli;
 mod plot_cli;
 mod readme;
 mod snapshots;

@@ -10,6 +10,7 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 mod fill;
+mod lsystem;
 mod plot;
 
 use moyo::output::write_atomic;
@@ -46,6 +47,12 @@ enum Command {
     /// pattern goes on a layer and pen of its own; the input's layers and
     /// pens are kept as they are.
     Fill(fill::FillArgs),
+    /// Draw an L-system: rules from the command line, fitted to the page;
+    /// or the Sketching L-System grown along the first path of an SVG.
+    ///
+    /// The turtle starts heading up the page; `+` turns left. The same
+    /// table in a scene description (`[[layers.lsystem]]`) draws the same.
+    Lsystem(lsystem::LSystemArgs),
     /// Print a template's scene description to start a design from.
     New {
         /// Template name (see `moyo templates`).
@@ -108,6 +115,7 @@ pub(crate) fn run() -> ExitCode {
         Command::Plot(args) => plot::plot(&args),
         Command::Stats(args) => plot::stats(&args),
         Command::Fill(args) => fill::fill(&args),
+        Command::Lsystem(args) => lsystem::lsystem(&args),
         Command::New { name, output } => new(&name, output.as_deref()),
     };
     match result {

@@ -36,7 +36,7 @@ pub use bow::bowed_cubic;
 pub use point_index::PointIndex;
 pub use side::SideTest;
 pub use spline::{natural_spline, natural_spline_cubics};
-pub use taper::tapered_outline;
+pub use taper::{outline_with_widths, tapered_outline};
 pub use tour::{tour, tour_length};
 pub use walk::PathWalker;
 

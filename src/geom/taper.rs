@@ -38,14 +38,25 @@ const QUARTER_ARC_KAPPA: f64 = 0.552_284_749_830_793_4;
 /// loop, as any offset curve does. A zero-length or empty centre gives an
 /// empty path.
 pub fn tapered_outline(centre: &BezPath, base_width: f64, tip_width: f64) -> BezPath {
+    // `max` also maps NaN widths to 0, so no NaN reaches the output.
+    let base_width = base_width.max(0.0);
+    let tip_width = tip_width.max(0.0);
+    outline_with_widths(centre, &|f| base_width + (tip_width - base_width) * f)
+}
+
+/// A closed outline around `centre` as [`tapered_outline`] draws it, whose
+/// width at each point is `width(f)`, `f` being the fraction (0 at the
+/// base, 1 at the tip) of the centre's arc length before it: for limbs
+/// whose width changes along them, not only linearly.
+pub fn outline_with_widths(centre: &BezPath, width: &dyn Fn(f64) -> f64) -> BezPath {
     let walker = PathWalker::new(centre, TOLERANCE);
     let length = walker.length();
     if length.is_nan() || length < MIN_LENGTH {
         return BezPath::new();
     }
     // `max` also maps NaN widths to 0, so no NaN reaches the output.
-    let base_width = base_width.max(0.0);
-    let tip_width = if tip_width >= MIN_TIP { tip_width } else { 0.0 };
+    let width = |f: f64| width(f).max(0.0);
+    let tip_width = Some(width(1.0)).filter(|&w| w >= MIN_TIP).unwrap_or(0.0);
 
     let intervals = (MIN_INTERVALS_PER_SEGMENT * centre.segments().count())
         .max((length / MAX_SPACING).ceil() as usize)
@@ -56,7 +67,7 @@ pub fn tapered_outline(centre: &BezPath, base_width: f64, tip_width: f64) -> Bez
     let mut right = Vec::with_capacity(samples.len());
     for (k, &(p, d)) in samples.iter().enumerate() {
         let frac = k as f64 / intervals as f64;
-        let half = 0.5 * (base_width + (tip_width - base_width) * frac);
+        let half = 0.5 * width(frac);
         left.push(p + Side::Left.normal(d) * half);
         right.push(p + Side::Right.normal(d) * half);
     }
@@ -131,6 +142,42 @@ mod tests {
                 let d = polyline_distance(&centre_pts, q);
                 assert!(d <= limit, "{q:?} is {d} from the centre (limit {limit})");
             }
+        }
+    }
+
+    #[test]
+    fn widths_along_the_centre_are_the_ones_asked_for() {
+        // A straight centre 40 mm up the page, thick in the middle (a
+        // smooth width: the sides are splines through samples).
+        let centre = line((0.0, 0.0), (0.0, -40.0));
+        let width = |f: f64| 1.0 + 4.0 * (PI * f).sin();
+        let out = outline_with_widths(&centre, &width);
+        assert!(matches!(out.elements().last(), Some(PathEl::ClosePath)));
+        // Across the centre at height 40 f, the outline lies width(f)/2 to
+        // either side: find where it crosses that height.
+        for f in [0.1, 0.25, 0.5, 0.7, 0.9] {
+            let y = -40.0 * f;
+            let crossings: Vec<f64> = out
+                .segments()
+                .flat_map(|seg| {
+                    (0..400).filter_map(move |i| {
+                        let (a, b) = (seg.eval(i as f64 / 400.0), seg.eval((i + 1) as f64 / 400.0));
+                        ((a.y - y) * (b.y - y) <= 0.0 && a.y != b.y)
+                            .then(|| a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y))
+                    })
+                })
+                .collect();
+            let (lo, hi) = crossings
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
+                    (l.min(x), h.max(x))
+                });
+            assert!(
+                (hi - lo - width(f)).abs() < 0.02,
+                "at {f}: {} wide",
+                hi - lo
+            );
+            assert!((hi + lo).abs() < 0.01);
         }
     }
 

@@ -8,8 +8,10 @@
 //!
 //! Families: `kimono` (tree sets with flowers and leaves, backgrounds),
 //! built on `tree` (the eight rules) and `flora` (vector motifs),
-//! `paths` (user paths placed and repeated) and `voronoi` (cells, Delaunay
-//! edges, inset cells, stipples and tours inside a region). docs/ARCHITECTURE.md says
+//! `paths` (user paths placed and repeated), `voronoi` (cells, Delaunay
+//! edges, inset cells, stipples and tours inside a region), `zentangle`
+//! (the filling process) and `lsystem` (an L-system or a sketch along a
+//! stroke, seen from its view, with flowers and leaves). docs/ARCHITECTURE.md says
 //! how to add one. The generators are the crate's own; what a library user
 //! reaches here is the motif [`Library`] (built-in and user motifs),
 //! [`draw`] for one motif on its own, and [`Progress`].
@@ -19,6 +21,7 @@ mod context;
 mod flora;
 mod flow;
 mod kimono;
+mod lsystem;
 mod paths;
 mod region;
 #[cfg(test)]
@@ -54,6 +57,7 @@ pub fn build(item: &LayerItem<'_>, cx: &mut Context<'_>) -> Result<Group> {
         Table::Paths(t) => paths::build(t, &id, cx),
         Table::Voronoi(t) => voronoi::build(t, &id, cx),
         Table::Zentangle(t) => zentangle::build(t, &id, cx),
+        Table::LSystem(t) => lsystem::build(t, &id, cx),
     }?;
     cx.advance_to(done);
     Ok(group)

@@ -529,6 +529,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
             paths: Vec::new(),
             voronoi: voronoi.into_iter().collect(),
             zentangle: zentangle.into_iter().collect(),
+            lsystem: Vec::new(),
         }],
         plot: PlotOptions::default(),
         adjust: Vec::new(),

@@ -375,6 +375,61 @@ pub struct LeavesSpec {
     pub joints: Option<JointLeafSpec>,
 }
 
+/// Motifs on an L-system (flowers or leaves): at the tip of every limb,
+/// or wherever the turtle met `symbol`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OrnamentSpec {
+    /// One to five motifs: the i-th ornament gets motif i mod n.
+    pub motifs: Vec<MotifRef>,
+    /// One character: an ornament wherever the turtle meets it (e.g. `L`
+    /// in `F[+FL]F`); default: at the tip of every limb.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub symbol: Option<String>,
+    /// Width in mm (0.5–500, default 6).
+    #[serde(default = "default_ornament_size")]
+    pub width: f64,
+    /// Height in mm (0.5–500); default: the width × the motif's own
+    /// height-to-width ratio.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Random turn of each, degrees (0–180).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub turn: f64,
+    /// Preview colour and hatching.
+    #[serde(default, skip_serializing_if = "PaintSpec::is_default")]
+    pub paint: PaintSpec,
+}
+
+fn default_ornament_size() -> f64 {
+    6.0
+}
+
+impl OrnamentSpec {
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
+        motifs(&format!("{f}.motifs"), &self.motifs, 1)?;
+        if let Some(symbol) = &self.symbol {
+            if symbol.chars().count() != 1 || symbol.trim().is_empty() {
+                return Err(Error::invalid(
+                    format!("{f}.symbol"),
+                    format!("`{symbol}` is not one character (a module of the rules, e.g. \"L\")"),
+                ));
+            }
+        }
+        size(&format!("{f}.width"), self.width)?;
+        if let Some(h) = self.height {
+            size(&format!("{f}.height"), h)?;
+        }
+        range(&format!("{f}.turn"), self.turn, 0.0, 180.0)?;
+        self.paint.check(&format!("{f}.paint"))
+    }
+
+    /// The character of `symbol`.
+    pub fn symbol_char(&self) -> Option<char> {
+        self.symbol.as_deref().and_then(|s| s.chars().next())
+    }
+}
+
 impl LeavesSpec {
     /// True when no leaves are asked for.
     pub fn is_empty(&self) -> bool {

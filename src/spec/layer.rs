@@ -12,7 +12,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    BackgroundSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec, VoronoiSpec, ZentangleSpec,
+    BackgroundSpec, LSystemSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec, VoronoiSpec,
+    ZentangleSpec,
 };
 use crate::error::Result;
 
@@ -46,6 +47,9 @@ pub struct LayerSpec {
     /// Zentangle fills inside a region.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub zentangle: Vec<ZentangleSpec>,
+    /// L-systems: rules drawn by a turtle, or grown along a stroke.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lsystem: Vec<LSystemSpec>,
 }
 
 fn default_pen_number() -> u32 {
@@ -66,6 +70,8 @@ pub enum Table<'a> {
     Voronoi(&'a VoronoiSpec),
     /// `[[layers.zentangle]]`: zentangle fills in a region.
     Zentangle(&'a ZentangleSpec),
+    /// `[[layers.lsystem]]`: an L-system or a sketch along a stroke.
+    LSystem(&'a LSystemSpec),
 }
 
 /// What the seam needs from every family's table.
@@ -122,6 +128,7 @@ impl<'a> Table<'a> {
             Table::Paths(t) => t,
             Table::Voronoi(t) => t,
             Table::Zentangle(t) => t,
+            Table::LSystem(t) => t,
         }
     }
 }
@@ -163,6 +170,13 @@ impl LayerSpec {
             &self.zentangle,
             |t| &t.id,
             Table::Zentangle,
+        );
+        numbered(
+            &mut items,
+            "lsystem",
+            &self.lsystem,
+            |t| &t.id,
+            Table::LSystem,
         );
         items
     }

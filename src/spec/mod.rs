@@ -12,6 +12,7 @@
 mod flora;
 mod layer;
 mod locate;
+mod lsystem;
 mod params;
 mod paths;
 mod region;
@@ -23,9 +24,13 @@ mod zentangle;
 
 pub use flora::{
     AdjustSpec, Assign, BackgroundSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec,
-    JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MotifKind, MotifRef, PaintSpec,
+    JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MotifKind, MotifRef, OrnamentSpec,
+    PaintSpec,
 };
 pub use layer::{Family, LayerItem, LayerSpec, Table};
+pub use lsystem::{
+    LSystemSpec, NamedView, SketchSpec, TropismSpec, View, MAX_ITERATIONS as MAX_LSYSTEM_ITERATIONS,
+};
 pub use params::{ResolvedTreeParams, TreeParams};
 pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
 pub use region::{CircleSpec, HoleSpec, RegionSpec};

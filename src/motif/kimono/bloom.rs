@@ -63,13 +63,13 @@ fn leaf_motif(motifs: &[MotifRef], assign: Assign, k: usize) -> &MotifRef {
 }
 
 /// Unit motif → page: anchor at the origin, sized `w × h`.
-fn sized(d: &Drawing, w: f64, h: Option<f64>) -> Affine {
+pub(crate) fn sized(d: &Drawing, w: f64, h: Option<f64>) -> Affine {
     let h = h.unwrap_or(w * d.aspect);
     Affine::scale_non_uniform(w, h) * Affine::translate(-d.anchor.to_vec2())
 }
 
 /// Clockwise angle (radians) from straight up to `d` on the page.
-fn angle_from_up(d: Vec2) -> f64 {
+pub(crate) fn angle_from_up(d: Vec2) -> f64 {
     d.x.atan2(-d.y)
 }
 
@@ -108,17 +108,21 @@ fn size_factor(f: &FlowerSpec, i: usize, n: usize, depth: i32) -> f64 {
 }
 
 /// Where a motif goes and what it looks like.
-struct Put<'a> {
-    id: String,
-    motif: &'a MotifRef,
-    adjust: Option<&'a AdjustSpec>,
-    paint: &'a PaintSpec,
+pub(crate) struct Put<'a> {
+    /// Its id (the path's in the SVG, and what `[[adjust]]` names).
+    pub(crate) id: String,
+    /// What is drawn (unless the adjustment swaps it).
+    pub(crate) motif: &'a MotifRef,
+    /// Its final adjustment.
+    pub(crate) adjust: Option<&'a AdjustSpec>,
+    /// Its preview colour and hatching.
+    pub(crate) paint: &'a PaintSpec,
 }
 
 /// Draws a motif (swapped for the adjustment's when it names one), maps
 /// it by `place` (which sees the drawing, for its anchor and aspect),
 /// takes it from the budget and appends it to `group`.
-fn put(
+pub(crate) fn put(
     group: &mut Group,
     item: Put<'_>,
     cx: &mut Context<'_>,

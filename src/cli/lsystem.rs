@@ -1,0 +1,346 @@
+//! `moyo lsystem`: an L-system from the command line, for exploring — the
+//! same table a scene description's `[[layers.lsystem]]` holds, on one pen,
+//! fitted to the page; or, with `--stroke`, the Sketching L-System grown
+//! along the first path of an SVG, on that SVG's page.
+
+use std::path::{Path, PathBuf};
+
+use clap::{Args, ValueEnum};
+
+use super::CliError;
+use moyo::output::write_atomic;
+use moyo::project::{self, Rendered};
+use moyo::spec::{
+    Format, LSystemSpec, LimbStyle, NamedView, PaperSize, SceneSpec, SketchSpec, ValidSpec, View,
+};
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ViewArg {
+    /// From the front: the turtle's x right, y up.
+    Front,
+    /// From the side: −z right, y up.
+    Side,
+    /// From above: x right, −z up the page.
+    Top,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum StyleArg {
+    /// Centre lines, one pen pass.
+    Stroke,
+    /// Closed outlines as wide as the turtle's width.
+    Outline,
+}
+
+#[derive(Args)]
+pub(crate) struct LSystemArgs {
+    /// The start word (ABOP's axiom), e.g. F or "A(1, 10)".
+    #[arg(long, allow_hyphen_values = true, required_unless_present = "stroke")]
+    axiom: Option<String>,
+    /// A production, repeatable: 'F=F[+F]F[-F]F', 'F ->(0.5) F[+F]F',
+    /// 'A(l) : l > 1 -> F(l)[+A(l*0.7)]'. With --stroke: the rule of a
+    /// or c, e.g. 'a -> b(40) b(-40) c(30) a'.
+    #[arg(long = "rule", value_name = "RULE", allow_hyphen_values = true)]
+    rules: Vec<String>,
+    /// The turning angle δ, degrees (0–360).
+    #[arg(long, default_value_t = 25.7, value_name = "DEG")]
+    angle: f64,
+    /// Rewriting steps (0–100).
+    #[arg(long, short = 'n', default_value_t = 4, value_name = "N")]
+    iterations: u32,
+    /// A named constant for the rules, repeatable: --define r1=0.9.
+    #[arg(long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    defines: Vec<(String, f64)>,
+    /// Symbols that context matching passes over, e.g. "+-F".
+    #[arg(long, default_value = "", allow_hyphen_values = true)]
+    ignore: String,
+    /// How limbs are drawn.
+    #[arg(long, value_enum, default_value = "stroke")]
+    style: StyleArg,
+    /// Starting width of the turtle, in units of F (with --style outline).
+    #[arg(long, default_value_t = 1.0, value_name = "W")]
+    width: f64,
+    /// Smooth curves through the turtle's points instead of exact lines.
+    #[arg(long)]
+    smooth: bool,
+    /// Where the 3D drawing is seen from.
+    #[arg(long, value_enum, default_value = "front")]
+    view: ViewArg,
+    /// Seed of stochastic rules (0 – 9223372036854775807).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Page: A5, A4, A3, A2, letter, legal, tabloid (ignored with --stroke,
+    /// which uses the stroke file's page).
+    #[arg(long, default_value = "A4")]
+    page: String,
+    /// Grow the Sketching L-System along the first path of this SVG, on
+    /// its page and in its coordinates (not fitted).
+    #[arg(long, value_name = "SVG")]
+    stroke: Option<PathBuf>,
+    /// With --stroke: stroke length per rule application, mm (0.1–1000).
+    #[arg(long, default_value_t = 8.0, value_name = "MM")]
+    module: f64,
+
+    /// Output SVG file.
+    #[arg(short, long, help_heading = "Output")]
+    output: PathBuf,
+    /// Also write a PNG preview.
+    #[arg(long, help_heading = "Output")]
+    png: Option<PathBuf>,
+    /// Resolution of the PNG preview (1–2400).
+    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
+    dpi: f64,
+    /// Also write the drawing after every rewriting step (every module
+    /// step with --stroke) into this folder: frame-000.svg, … (and .png
+    /// with --png).
+    #[arg(long, value_name = "DIR", help_heading = "Output")]
+    frames: Option<PathBuf>,
+}
+
+fn parse_define(s: &str) -> Result<(String, f64), String> {
+    let (name, value) = s
+        .split_once('=')
+        .ok_or_else(|| format!("`{s}` is not NAME=VALUE"))?;
+    let value: f64 = value
+        .trim()
+        .parse()
+        .map_err(|e| format!("`{value}` is not a number: {e}"))?;
+    Ok((name.trim().to_string(), value))
+}
+
+impl LSystemArgs {
+    /// The table the options describe.
+    fn table(&self) -> Result<LSystemSpec, CliError> {
+        let mut t = LSystemSpec {
+            angle: self.angle,
+            style: match self.style {
+                StyleArg::Stroke => LimbStyle::Stroke,
+                StyleArg::Outline => LimbStyle::Outline,
+            },
+            width: self.width,
+            smooth: self.smooth,
+            view: View::Named(match self.view {
+                ViewArg::Front => NamedView::Front,
+                ViewArg::Side => NamedView::Side,
+                ViewArg::Top => NamedView::Top,
+            }),
+            ..LSystemSpec::default()
+        };
+        match &self.stroke {
+            Some(path) => {
+                let name = path.file_name().map_or_else(
+                    || Err(CliError::Message(format!("{}: not a file", path.display()))),
+                    |n| Ok(n.to_string_lossy().into_owned()),
+                )?;
+                let rule = |kind: &str| {
+                    self.rules
+                        .iter()
+                        .find(|r| r.trim_start().starts_with(kind))
+                        .cloned()
+                };
+                t.style = LimbStyle::Outline;
+                t.width = 1.0;
+                t.sketch = Some(SketchSpec {
+                    points: None,
+                    smooth: true,
+                    svg: Some(name),
+                    module: self.module,
+                    a: rule("a"),
+                    c: rule("c"),
+                    width: 1.5,
+                    steps: None,
+                });
+                if let Some(other) = self
+                    .rules
+                    .iter()
+                    .find(|r| !r.trim_start().starts_with(['a', 'c']))
+                {
+                    return Err(CliError::Message(format!(
+                        "--rule `{other}`: with --stroke, rules are for `a` or `c`"
+                    )));
+                }
+            }
+            None => {
+                t.axiom = self.axiom.clone().unwrap_or_default();
+                t.rules = self.rules.clone();
+                t.iterations = self.iterations;
+                t.constants = self.defines.iter().cloned().collect();
+                t.ignore = self.ignore.clone();
+            }
+        }
+        Ok(t)
+    }
+
+    /// The scene: one layer on pen 1 holding the table.
+    fn scene(&self) -> Result<ValidSpec, CliError> {
+        let table = self.table()?;
+        let page = match &self.stroke {
+            Some(path) => {
+                let drawing = project::read_svg(path, &moyo::ImportOptions::DEFAULT)?;
+                let page = drawing.scene.page;
+                Some(PaperSize::Custom([page.width, page.height]))
+            }
+            None => None,
+        };
+        let base = "version = 1\n[[layers]]\nname = \"lsystem\"\n";
+        let spec = SceneSpec::parse(base, Format::Toml)?;
+        let paper = self.page.clone();
+        spec.edit(|s| {
+            s.seed = self.seed;
+            s.title = Some("moyo lsystem".into());
+            match page {
+                Some(size) => {
+                    s.page.size = size;
+                    s.page.margin = moyo::spec::MarginSpec::Uniform(0.0);
+                }
+                None => {
+                    if let Ok(size) = toml::Value::String(paper).try_into::<PaperSize>() {
+                        s.page.size = size;
+                    }
+                }
+            }
+            s.limits.max_paths = 5_000_000;
+            if table.style == LimbStyle::Outline {
+                // Limb outlines merge into one silhouette, as a person
+                // draws a plant: no line inside it.
+                s.plot.occlude =
+                    Some(moyo::plot::occlude::OccludeOptions::DEFAULT.with_silhouettes(true));
+            }
+            s.layers[0].lsystem = vec![table];
+        })
+        .map_err(|e| CliError::Message(on_the_command_line(e)))
+    }
+}
+
+/// The library names a bad value by its field in the table (and its place
+/// in a description the command wrote itself); here it is the command's
+/// option.
+fn on_the_command_line(e: moyo::Error) -> String {
+    let moyo::Error::Invalid { field, message, .. } = &e else {
+        return e.to_string();
+    };
+    let Some(rest) = field.strip_prefix("layers[0].lsystem[0]") else {
+        return e.to_string();
+    };
+    let rest = rest.trim_start_matches('.');
+    let option = match rest.split(['[', '.']).next().unwrap_or(rest) {
+        // The table as a whole: its growth ran over a budget.
+        "" => "--iterations",
+        "rules" => "--rule",
+        "constants" => "--define",
+        "sketch" if rest.starts_with("sketch.a") || rest.starts_with("sketch.c") => "--rule",
+        "sketch" => "--module",
+        "axiom" => "--axiom",
+        "iterations" => "--iterations",
+        "angle" => "--angle",
+        "width" => "--width",
+        "ignore" => "--ignore",
+        _ => return format!("{rest}: {message}"),
+    };
+    if rest.is_empty() || rest == &option[2..] {
+        format!("{option}: {message}")
+    } else {
+        format!("{option} ({rest}): {message}")
+    }
+}
+
+/// Renders `spec` with the files beside `base`.
+fn render(spec: &ValidSpec, base: &Path) -> Result<Rendered, CliError> {
+    let library = project::load_motifs(spec, base)?;
+    project::render_with_progress(spec, &library, &mut |_| {})
+        .map_err(|e| CliError::Message(on_the_command_line(e)))
+}
+
+/// `moyo lsystem`.
+pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
+    let spec = args.scene()?;
+    let base = args
+        .stroke
+        .as_deref()
+        .and_then(Path::parent)
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    // Everything is computed before anything is written.
+    let rendered = render(&spec, &base)?;
+    let png = match &args.png {
+        Some(_) => Some(moyo::output::render_png(&rendered.preview_svg(), args.dpi)?),
+        None => None,
+    };
+    let frames = match &args.frames {
+        Some(_) => frames(&spec, &base, &rendered, args)?,
+        None => Vec::new(),
+    };
+    write_atomic(&args.output, rendered.svg.as_bytes())?;
+    if let (Some(path), Some(bytes)) = (&args.png, &png) {
+        write_atomic(path, bytes)?;
+    }
+    if let Some(dir) = &args.frames {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| CliError::Message(format!("{}: {e}", dir.display())))?;
+        for (k, (svg, png)) in frames.iter().enumerate() {
+            write_atomic(&dir.join(format!("frame-{k:03}.svg")), svg.as_bytes())?;
+            if let Some(bytes) = png {
+                write_atomic(&dir.join(format!("frame-{k:03}.png")), bytes)?;
+            }
+        }
+    }
+    let stats = rendered.scene.stats();
+    eprintln!(
+        "wrote {}{} ({} paths, {:.0} mm pen-down){}",
+        args.output.display(),
+        args.png
+            .as_ref()
+            .map(|p| format!(" and {}", p.display()))
+            .unwrap_or_default(),
+        stats.paths,
+        stats.pen_down_mm,
+        args.frames
+            .as_ref()
+            .map(|d| format!(", and {} frames in {}", frames.len(), d.display()))
+            .unwrap_or_default(),
+    );
+    for note in &rendered.notes {
+        eprintln!("{}: {}", note.motif, note.text);
+    }
+    Ok(())
+}
+
+/// The most growth frames written.
+const MAX_FRAMES: u32 = 1000;
+
+/// A frame: its SVG, and its PNG when one is asked for.
+type Frame = (String, Option<Vec<u8>>);
+
+/// The drawing after each rewriting step (or module step of a sketch), up
+/// to the whole of `full`, as SVG and, with `--png`, PNG.
+fn frames(
+    spec: &ValidSpec,
+    base: &Path,
+    full: &Rendered,
+    args: &LSystemArgs,
+) -> Result<Vec<Frame>, CliError> {
+    let precision = spec.output.precision;
+    let whole = full.dump(precision);
+    let mut out = Vec::new();
+    for k in 0..=MAX_FRAMES {
+        let step = spec
+            .edit(|s| {
+                let t = &mut s.layers[0].lsystem[0];
+                match &mut t.sketch {
+                    Some(sketch) => sketch.steps = Some(k),
+                    None => t.iterations = k,
+                }
+            })
+            .map_err(|e| CliError::Message(on_the_command_line(e)))?;
+        let r = render(&step, base)?;
+        let png = match &args.png {
+            Some(_) => Some(moyo::output::render_png(&r.preview_svg(), args.dpi)?),
+            None => None,
+        };
+        let last = r.dump(precision) == whole;
+        out.push((r.svg, png));
+        if last {
+            break;
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,236 @@
+//! The `lsystem` family (SPEC §4): an L-system's 3D skeleton (from the
+//! engine in [`crate::lsystem`]) seen from its view, placed on the page,
+//! and drawn as centre strokes or as outlines as wide as the turtle's
+//! width.
+//!
+//! * **Seen**: orthographically, along the view's direction with its up up
+//!   the page (the turtle's frame has y up; the page has y down).
+//! * **Placed**: at each root of `at`, `step` mm per unit and turned by
+//!   `rotate`; or, with no roots, fitted into `fit` (the page inside its
+//!   margins by default), aspect kept, centred. A sketch lies on its
+//!   stroke, in page millimetres, seen from the front.
+//! * **Drawn**: each limb (a pen-down run of the turtle) is one path: the
+//!   exact polyline, or with `smooth` a natural spline through its
+//!   points; with `style = "outline"` a closed outline whose width follows
+//!   the turtle's along it. `{ … }` polygons are closed paths. A placed
+//!   drawing is a [solid](Group::solid) group, so in front of other
+//!   layers its outlines hide what is behind them.
+//! * **Ornaments**: flowers and leaves of the motif library at the limbs'
+//!   tips or where the turtle met a symbol (`ornament`), painted after
+//!   the limbs, leaves first.
+//!
+//! Ids: `<group>.plant-<i>` for each placed copy (or `<group>.plant-0`
+//! fitted), its paths `…limb-<k>` and `…polygon-<k>`, its ornaments
+//! `…flower-<i>` and `…leaf-<i>`.
+
+mod draw;
+mod ornament;
+
+#[cfg(test)]
+mod tests;
+
+use glam::DVec2;
+use kurbo::{Affine, BezPath, Point, Rect};
+
+use super::Context;
+use crate::error::{Error, Result};
+use crate::geom::TOLERANCE;
+use crate::lsystem::sketch::Sketch;
+use crate::lsystem::{Skeleton, Turtle, TurtleOptions};
+use crate::scene::{Group, Style};
+use crate::spec::{LSystemSpec, LimbStyle, SketchSpec};
+use draw::{flat, limb_path, polygon_path, Projection};
+use ornament::{ornaments, sites, Kind};
+
+/// The most modules a word may reach while rewriting (ABOP fig. 1.24a at
+/// n = 10 has 24.4 million).
+pub(crate) const MAX_MODULES: usize = 50_000_000;
+
+/// The most segments the turtle or a sketch may draw.
+pub(crate) const MAX_SEGMENTS: usize = 10_000_000;
+
+/// Limbs shorter than this on the page (mm) are not drawn.
+const MIN_LIMB: f64 = 0.05;
+
+/// Builds an L-system table into a group with id `group_id`.
+pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
+    let mut group = Group::new(group_id);
+    let (skeleton, projection) = match &spec.sketch {
+        Some(sketch) => (grow_sketch(sketch, cx)?, Projection::PAGE),
+        None => (grow(spec, group_id, cx)?, Projection::of(spec.view.axes())),
+    };
+    let flat = flat(&skeleton, &projection);
+    let placements: Vec<Affine> = if spec.sketch.is_some() {
+        vec![Affine::IDENTITY]
+    } else if spec.at.is_empty() {
+        // Scene coordinates start at the margins' corner.
+        let frame = spec.fit.map_or_else(
+            || Rect::from_origin_size(Point::ZERO, cx.page().drawable().size()),
+            |[x0, y0, x1, y1]| Rect::new(x0, y0, x1, y1),
+        );
+        vec![fitted(flat.bounds(spec.style == LimbStyle::Outline), frame)]
+    } else {
+        let turn = Affine::rotate(spec.rotate.to_radians()) * Affine::scale(spec.step);
+        spec.at
+            .iter()
+            .map(|&[x, y]| Affine::translate((x, y)) * turn)
+            .collect()
+    };
+    let paths = flat.limbs.len() + flat.polygons.len();
+    cx.take_paths(paths * placements.len(), || {
+        format!("the L-system {group_id} ({paths} limbs a copy)")
+    })?;
+    let style = Style::default();
+    for (i, place) in placements.iter().enumerate() {
+        let plant_id = format!("{group_id}.plant-{i}");
+        let mut plant = Group::solid(&plant_id);
+        let scale = place.determinant().abs().sqrt();
+        for (k, limb) in flat.limbs.iter().enumerate() {
+            // Old lineages shrink geometrically: what no pen can draw is
+            // left out rather than plotted as a dot.
+            if limb.length() * scale < MIN_LIMB {
+                continue;
+            }
+            let path = limb_path(limb, spec.smooth, spec.style == LimbStyle::Outline);
+            plant.push_path(format!("{plant_id}.limb-{k}"), *place * path, style.clone());
+        }
+        for (k, polygon) in flat.polygons.iter().enumerate() {
+            let path = polygon_path(polygon);
+            plant.push_path(
+                format!("{plant_id}.polygon-{k}"),
+                *place * path,
+                style.clone(),
+            );
+        }
+        group.push_group(plant);
+        for (ornament, kind) in [(&spec.leaves, Kind::Leaf), (&spec.flowers, Kind::Flower)] {
+            if let Some(o) = ornament {
+                let at = sites(&flat, o);
+                group.push_group(ornaments(o, kind, &at, *place, &plant_id, cx)?);
+            }
+        }
+    }
+    Ok(group)
+}
+
+/// The skeleton of a rewritten system, drawn by the turtle.
+fn grow(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Skeleton> {
+    let field = cx.item_field();
+    let system = spec.system(&field)?;
+    let mut rng = cx.stream(group_id);
+    let word = system.derive(spec.iterations as usize, &mut rng, MAX_MODULES)?;
+    let mut options = TurtleOptions::DEFAULT
+        .with_angle(spec.angle)
+        .with_width(spec.width)
+        .with_width_factor(spec.width_factor)
+        .with_max_segments(MAX_SEGMENTS)
+        .with_marks(&marked(spec));
+    if let Some(t) = &spec.tropism {
+        let [x, y, z] = t.direction;
+        options = options.with_tropism(glam::DVec3::new(x, y, z), t.elasticity);
+    }
+    Turtle::new(options).interpret(&word)
+}
+
+/// The symbols whose places the ornaments need.
+fn marked(spec: &LSystemSpec) -> String {
+    spec.flowers
+        .iter()
+        .chain(&spec.leaves)
+        .filter_map(|o| o.symbol_char())
+        .collect()
+}
+
+/// The skeleton of a sketch grown along its whole stroke.
+fn grow_sketch(spec: &SketchSpec, cx: &mut Context<'_>) -> Result<Skeleton> {
+    let field = cx.field("sketch");
+    let rules = spec.rules(&field)?;
+    let mut stroke = stroke_points(spec, cx)?;
+    if let Some(k) = spec.steps {
+        // A hair past k modules, so that rounding cannot lose the last.
+        cut(&mut stroke, f64::from(k) * spec.module + 1e-9);
+    }
+    let mut sketch = Sketch::new(rules, MAX_SEGMENTS)?;
+    sketch.extend(&stroke)?;
+    Ok(sketch.skeleton())
+}
+
+/// The stroke of a sketch as a dense polyline (page mm).
+pub(crate) fn stroke_points(spec: &SketchSpec, cx: &Context<'_>) -> Result<Vec<DVec2>> {
+    let path = match (&spec.points, &spec.svg) {
+        (Some(points), _) if spec.smooth => super::flow_line(points),
+        (Some(points), _) => {
+            let mut line = BezPath::new();
+            for (i, &[x, y]) in points.iter().enumerate() {
+                if i == 0 {
+                    line.move_to((x, y));
+                } else {
+                    line.line_to((x, y));
+                }
+            }
+            line
+        }
+        (None, Some(name)) => first_subpath(cx.library().paths(name)?),
+        (None, None) => BezPath::new(),
+    };
+    let mut out: Vec<DVec2> = Vec::new();
+    kurbo::flatten(&path, TOLERANCE, |el| {
+        if let kurbo::PathEl::MoveTo(p) | kurbo::PathEl::LineTo(p) = el {
+            out.push(DVec2::new(p.x, p.y));
+        }
+    });
+    if out.len() < 2 {
+        return Err(Error::invalid(
+            cx.field("sketch"),
+            "its stroke is empty: a sketch needs a line to grow along",
+        ));
+    }
+    Ok(out)
+}
+
+/// Cuts the polyline `line` where it is `length` long.
+fn cut(line: &mut Vec<DVec2>, length: f64) {
+    let mut walked = 0.0;
+    for i in 1..line.len() {
+        let step = line[i].distance(line[i - 1]);
+        if walked + step >= length {
+            let t = if step > 0.0 {
+                (length - walked) / step
+            } else {
+                0.0
+            };
+            line[i] = line[i - 1].lerp(line[i], t);
+            line.truncate(i + 1);
+            return;
+        }
+        walked += step;
+    }
+}
+
+/// The first subpath of `path`.
+fn first_subpath(path: &BezPath) -> BezPath {
+    let mut out = BezPath::new();
+    for el in path.elements() {
+        if matches!(el, kurbo::PathEl::MoveTo(_)) && !out.elements().is_empty() {
+            break;
+        }
+        out.push(*el);
+    }
+    out
+}
+
+/// The map that puts `drawn` (turtle units, already y down) into the
+/// middle of `frame`, as large as fits with the aspect kept.
+fn fitted(drawn: Rect, frame: Rect) -> Affine {
+    let (w, h) = (drawn.width(), drawn.height());
+    let scale = match (w > 1e-12, h > 1e-12) {
+        (true, true) => (frame.width() / w).min(frame.height() / h),
+        (true, false) => frame.width() / w,
+        (false, true) => frame.height() / h,
+        // A single point: nothing to size.
+        (false, false) => 1.0,
+    };
+    Affine::translate(frame.center().to_vec2())
+        * Affine::scale(scale)
+        * Affine::translate(-drawn.center().to_vec2())
+}

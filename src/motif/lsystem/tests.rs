@@ -1,0 +1,270 @@
+use kurbo::{Affine, BezPath, ParamCurve, ParamCurveArclen, PathEl, Point, Rect, Shape as _};
+
+use crate::motif::test_scene;
+use crate::scene::Scene;
+
+fn scene(table: &str) -> Scene {
+    test_scene::scene("lsystem", table)
+}
+
+fn error(table: &str) -> String {
+    test_scene::error("lsystem", table)
+}
+
+/// Every path of the scene on the page.
+fn paths(scene: &Scene) -> Vec<BezPath> {
+    let mut out = Vec::new();
+    scene.layers[0]
+        .content
+        .visit_paths(Affine::IDENTITY, &mut |p, t| out.push(t * p.path.clone()));
+    out
+}
+
+fn length(paths: &[BezPath]) -> f64 {
+    paths
+        .iter()
+        .flat_map(|p| p.segments())
+        .map(|s| s.arclen(1e-6))
+        .sum()
+}
+
+fn bounds(paths: &[BezPath]) -> Rect {
+    paths
+        .iter()
+        .map(|p| p.bounding_box())
+        .reduce(|a, b| a.union(b))
+        .unwrap()
+}
+
+#[test]
+fn a_placed_drawing_starts_at_its_root_heading_up_one_step_per_unit() {
+    // F F + F: 20 mm up from (50, 150), then 10 mm to the upper left
+    // (`+` turns left as seen on the page).
+    let s = scene("axiom = \"FF+F\"\nangle = 90\nat = [[50, 150]]\nstep = 10\n");
+    let p = paths(&s);
+    assert_eq!(p.len(), 1);
+    let pts: Vec<Point> = p[0]
+        .elements()
+        .iter()
+        .filter_map(|e| match e {
+            PathEl::MoveTo(p) | PathEl::LineTo(p) => Some(*p),
+            _ => None,
+        })
+        .collect();
+    let want = [(50.0, 150.0), (50.0, 140.0), (50.0, 130.0), (40.0, 130.0)];
+    assert_eq!(pts.len(), want.len(), "{pts:?}");
+    for (p, w) in pts.iter().zip(want) {
+        assert!(p.distance(Point::from(w)) < 1e-9, "{pts:?}");
+    }
+    // Turned a quarter clockwise, it heads right.
+    let s = scene("axiom = \"F\"\nat = [[50, 150]]\nstep = 10\nrotate = 90\n");
+    let b = bounds(&paths(&s));
+    assert!(
+        (b.x1 - 60.0).abs() < 1e-9 && (b.y0 - 150.0).abs() < 1e-9,
+        "{b:?}"
+    );
+}
+
+#[test]
+fn a_fitted_drawing_fills_the_page_inside_its_margins() {
+    // A5 with 10 mm margins: 128 × 190 mm, scene coordinates starting at
+    // the margins' corner. The Koch snowflake is wider than tall, so it
+    // spans the width, centred.
+    let s = scene("axiom = \"F--F--F\"\nrules = [\"F -> F+F--F+F\"]\niterations = 3\nangle = 60\n");
+    let b = bounds(&paths(&s));
+    assert!(b.x0.abs() < 1e-6 && (b.x1 - 128.0).abs() < 1e-6, "{b:?}");
+    assert!(((b.y0 + b.y1) / 2.0 - 95.0).abs() < 1e-6, "{b:?}");
+    assert!(b.height() < 190.0);
+}
+
+#[test]
+fn the_koch_curve_grows_by_four_thirds_a_step_and_stays_exact() {
+    // Placed (not fitted), each step makes the curve 4/3 as long.
+    let len = |n: u32| {
+        let s = scene(&format!(
+            "axiom = \"F\"\nrules = [\"F -> F+F--F+F\"]\niterations = {n}\nangle = 60\nat = [[20, 150]]\nstep = {}\n",
+            100.0 / 3f64.powi(n as i32)
+        ));
+        let p = paths(&s);
+        // Exact lines: no curve in the output.
+        assert!(p
+            .iter()
+            .flat_map(|p| p.elements())
+            .all(|e| matches!(e, PathEl::MoveTo(_) | PathEl::LineTo(_))));
+        length(&p)
+    };
+    for n in 0..4 {
+        let ratio = len(n + 1) / len(n);
+        assert!((ratio - 4.0 / 3.0).abs() < 1e-9, "step {n}: {ratio}");
+    }
+}
+
+#[test]
+fn views_see_the_3d_drawing_from_their_side() {
+    // Up, then pitched down a quarter (`&`: towards the viewer's −z? the
+    // turtle's up is +z, so `&` turns the heading towards −U): the second
+    // step goes along z, which the front does not see and the side does.
+    let table = "axiom = \"F&(90)F\"\nat = [[50, 150]]\nstep = 10\n";
+    let front = bounds(&paths(&scene(table)));
+    assert!(
+        front.width() < 1e-9 && (front.height() - 10.0).abs() < 1e-9,
+        "{front:?}"
+    );
+    let side = bounds(&paths(&scene(&format!("{table}view = \"side\"\n"))));
+    assert!(
+        (side.width() - 10.0).abs() < 1e-9 && (side.height() - 10.0).abs() < 1e-9,
+        "{side:?}"
+    );
+    let top = bounds(&paths(&scene(&format!("{table}view = \"top\"\n"))));
+    assert!(
+        top.width() < 1e-9 && (top.height() - 10.0).abs() < 1e-9,
+        "{top:?}"
+    );
+}
+
+#[test]
+fn outlines_are_closed_and_as_wide_as_the_turtle() {
+    let s = scene("axiom = \"F\"\nat = [[50, 150]]\nstep = 10\nstyle = \"outline\"\nwidth = 0.4\n");
+    let p = paths(&s);
+    assert_eq!(p.len(), 1);
+    assert!(matches!(p[0].elements().last(), Some(PathEl::ClosePath)));
+    let b = p[0].bounding_box();
+    // 4 mm wide (0.4 units of 10 mm), a round cap on top.
+    assert!((b.width() - 4.0).abs() < 1e-6, "{b:?}");
+    assert!(
+        (b.y1 - 150.0).abs() < 1e-6 && (b.y0 - 138.0).abs() < 1e-6,
+        "{b:?}"
+    );
+}
+
+#[test]
+fn smooth_limbs_pass_through_the_turtle_points() {
+    let table = "axiom = \"F+F+F\"\nangle = 30\nat = [[50, 150]]\nstep = 10\n";
+    let sharp = paths(&scene(table));
+    let smooth = paths(&scene(&format!("{table}smooth = true\n")));
+    assert!(smooth[0]
+        .elements()
+        .iter()
+        .any(|e| matches!(e, PathEl::CurveTo(..))));
+    // The same ends.
+    let end = |p: &BezPath| p.segments().last().unwrap().end();
+    assert!(end(&sharp[0]).distance(end(&smooth[0])) < 1e-9);
+}
+
+#[test]
+fn a_sketch_lies_on_its_stroke_and_grows_with_its_steps() {
+    let table = "style = \"outline\"\n[layers.lsystem.sketch]\npoints = [[64, 190], [64, 20]]\nmodule = 10\n";
+    let whole = scene(table);
+    let b = bounds(&paths(&whole));
+    // Along the stroke, branching to both sides of it.
+    assert!(b.y1 <= 191.0 && b.y0 >= 19.0 - 60.0, "{b:?}");
+    assert!(b.x0 < 60.0 && b.x1 > 68.0, "{b:?}");
+    let count = |k: u32| paths(&scene(&format!("{table}steps = {k}\n"))).len();
+    let (three, six) = (count(3), count(6));
+    assert!(0 < three && three < six && six < paths(&whole).len());
+}
+
+#[test]
+fn the_seed_draws_stochastic_rules() {
+    let table = "axiom = \"F\"\nrules = [\"F ->(1) F[+F]F\", \"F ->(1) F[-F]F\"]\niterations = 4\n";
+    let a = crate::output::path_dump(&scene(table), 3);
+    assert_eq!(a, crate::output::path_dump(&scene(table), 3));
+    let other = test_scene::text("lsystem", table).replace("seed = 5", "seed = 6");
+    let spec = crate::spec::SceneSpec::parse(&other, crate::spec::Format::Toml).unwrap();
+    let b = crate::output::path_dump(&crate::project::build_scene(&spec).unwrap(), 3);
+    assert_ne!(a, b);
+}
+
+#[test]
+fn bad_tables_are_refused_with_their_field() {
+    for (table, expected) in [
+        ("axiom = \"\"\n", "layers[0].lsystem[0].axiom: is empty"),
+        (
+            "axiom = \"F\"\nrules = [\"F -> F[+F\"]\n",
+            "layers[0].lsystem[0].rules[0]",
+        ),
+        (
+            "axiom = \"F\"\nrules = [\"F(x -> F\"]\n",
+            "layers[0].lsystem[0].rules[0]: column",
+        ),
+        (
+            "axiom = \"F\"\niterations = 101\n",
+            "layers[0].lsystem[0].iterations: must be between 0 and 100",
+        ),
+        ("axiom = \"F\"\nangle = 400\n", "layers[0].lsystem[0].angle"),
+        (
+            "axiom = \"F\"\nview = { direction = [0, 1, 0], up = [0, 2, 0] }\n",
+            "layers[0].lsystem[0].view: `up` must not lie along `direction`",
+        ),
+        (
+            "axiom = \"F\"\nfit = [10, 10, 5, 50]\n",
+            "layers[0].lsystem[0].fit",
+        ),
+        (
+            "axiom = \"F\"\n[layers.lsystem.sketch]\npoints = [[0, 0], [0, 50]]\n",
+            "layers[0].lsystem[0].axiom: is not used by a sketch",
+        ),
+        (
+            "[layers.lsystem.sketch]\nmodule = 5\n",
+            "layers[0].lsystem[0].sketch: needs a stroke",
+        ),
+        (
+            "[layers.lsystem.sketch]\npoints = [[0, 0], [0, 50]]\nmodule = 0\n",
+            "layers[0].lsystem[0].sketch.module",
+        ),
+        (
+            "[layers.lsystem.sketch]\npoints = [[0, 0], [0, 50]]\na = \"a -> b(\"\n",
+            "layers[0].lsystem[0].sketch",
+        ),
+        // Runaway growth stops with a message, before memory runs out.
+        (
+            "axiom = \"F\"\nrules = [\"F -> FFFFFFFFFF\"]\niterations = 12\n",
+            "layers[0].lsystem[0]",
+        ),
+    ] {
+        let e = error(table);
+        assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
+    }
+}
+
+#[test]
+fn flowers_sit_on_the_tips_and_leaves_where_the_turtle_met_their_symbol() {
+    // Two branches and a stem: three tips; an L on each branch, half-way.
+    let table = "axiom = \"F[+FLF][-FLF]F\"\nangle = 90\nat = [[60, 150]]\nstep = 10\n\
+                 flowers = { motifs = [\"sakura\"], width = 4 }\n\
+                 leaves = { motifs = [\"leaf\"], symbol = \"L\", width = 3 }\n";
+    let s = scene(table);
+    let mut ids = Vec::new();
+    let mut boxes = std::collections::BTreeMap::new();
+    s.layers[0]
+        .content
+        .visit_paths(Affine::IDENTITY, &mut |p, t| {
+            ids.push(p.id.clone());
+            boxes.insert(p.id.clone(), (t * p.path.clone()).bounding_box());
+        });
+    let flowers: Vec<&String> = ids.iter().filter(|i| i.contains(".flower-")).collect();
+    let leaves: Vec<&String> = ids.iter().filter(|i| i.contains(".leaf-")).collect();
+    assert_eq!(flowers.len(), 3, "{ids:?}");
+    assert_eq!(leaves.len(), 2, "{ids:?}");
+    // The tips: 20 mm left and right of (60, 140), and (60, 130).
+    for tip in [(40.0, 140.0), (80.0, 140.0), (60.0, 130.0)] {
+        let tip = Point::from(tip);
+        assert!(
+            flowers
+                .iter()
+                .any(|f| boxes[*f].center().distance(tip) < 3.0),
+            "no flower at {tip:?}: {boxes:?}"
+        );
+    }
+    // Leaves start where the L was (10 mm out along each branch) and
+    // point along it: sideways, not up.
+    for leaf in &leaves {
+        let b = boxes[*leaf];
+        assert!(b.width() > b.height(), "{leaf}: {b:?}");
+        assert!((b.center().y - 140.0).abs() < 2.0, "{leaf}: {b:?}");
+    }
+    assert!(
+        error("axiom = \"F\"\nleaves = { motifs = [\"leaf\"], symbol = \"LL\" }\n")
+            .contains("layers[0].lsystem[0].leaves.symbol")
+    );
+}
