@@ -68,6 +68,7 @@ pub const ALL: &[Template] = templates![
     "lsystem-sketch-straight",
     "lsystem-sketch-s",
     "lsystem-sketch-spiral",
+    "kimono-lsystem",
 ];
 
 impl Template {

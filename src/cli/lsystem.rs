@@ -144,6 +144,7 @@ impl LSystemArgs {
                     points: None,
                     smooth: true,
                     svg: Some(name),
+                    line: None,
                     module: self.module,
                     a: rule("a"),
                     c: rule("c"),

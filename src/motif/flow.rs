@@ -13,22 +13,29 @@ pub(crate) fn flow_line(points: &Points) -> BezPath {
     natural_spline(&pts)
 }
 
-/// The overall flow: what stops growth.
+/// The overall flow: what stops growth, and the region lines themselves
+/// (strokes for a sketch to grow along).
 #[derive(Debug)]
 pub struct Flow {
     upper: Option<SideTest>,
     lower: Option<SideTest>,
+    lines: [Option<BezPath>; 2],
 }
 
 /// A region line as a far-side test. The line is taken left to right (its
 /// points are reversed when the last lies left of the first), so the far
 /// side of the upper line is above it and that of the lower line below.
 fn region_test(points: &Points, far: Side) -> Option<SideTest> {
+    Some(SideTest::new(&left_to_right(points)?, far))
+}
+
+/// A region line as a spline taken left to right.
+fn left_to_right(points: &Points) -> Option<BezPath> {
     let mut pts = points.clone();
     if pts.first()?[0] > pts.last()?[0] {
         pts.reverse();
     }
-    Some(SideTest::new(&flow_line(&pts), far))
+    Some(flow_line(&pts))
 }
 
 impl Flow {
@@ -43,7 +50,16 @@ impl Flow {
                 .lower
                 .as_ref()
                 .and_then(|p| region_test(p, Side::Right)),
+            lines: [
+                lines.upper.as_ref().and_then(left_to_right),
+                lines.lower.as_ref().and_then(left_to_right),
+            ],
         }
+    }
+
+    /// The upper (`upper`) or the lower region line, left to right.
+    pub fn line(&self, upper: bool) -> Option<&BezPath> {
+        self.lines[usize::from(!upper)].as_ref()
     }
 
     /// True when `p` may not be part of a plant: beyond the upper line, or

@@ -4,7 +4,8 @@
 //! stroke.
 //!
 //! Where it stands: with `at`, the turtle starts at each point, one unit of
-//! `F` being `step` mm; with neither `at` nor `sketch`, the drawing is
+//! `F` being `step` mm; with `along`, at `count` points of a line, upright
+//! on its upper side; with none of these nor `sketch`, the drawing is
 //! fitted into `fit` (default: the page inside its margins), aspect kept,
 //! centred. A sketch lies on its stroke, in page millimetres.
 
@@ -50,7 +51,8 @@ pub struct LSystemSpec {
     /// `"+-F"`.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub ignore: String,
-    /// With `at`: millimetres per unit of `F` (0.001–1000, default 1).
+    /// With `at` or `along`: millimetres per unit of `F` (0.001–1000,
+    /// default 1).
     #[serde(default = "one", skip_serializing_if = "is_one")]
     pub step: f64,
     /// `stroke` (the default: centre lines, one pen pass) or `outline`
@@ -80,8 +82,17 @@ pub struct LSystemSpec {
     /// Roots (mm): one drawing starts at each, heading up the page.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub at: Points,
-    /// Turn every drawing placed by `at` by this many degrees, clockwise
-    /// (−360–360).
+    /// Or roots along this line (≥ 2 control points of a natural spline,
+    /// mm): `count` drawings evenly spread by arc length, each standing
+    /// perpendicular to the line on its upper side, as trees on a centre
+    /// line.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub along: Option<Points>,
+    /// With `along`: how many drawings (1–1000, default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub count: Option<u32>,
+    /// Turn every drawing placed by `at` or `along` by this many degrees,
+    /// clockwise (−360–360).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub rotate: f64,
     /// Without `at`: the box `[x0, y0, x1, y1]` (mm) the drawing is fitted
@@ -182,6 +193,10 @@ pub struct SketchSpec {
     /// its own millimetres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub svg: Option<String>,
+    /// Or a region line of the scene's `[lines]` (the kimono flow),
+    /// `"upper"` or `"lower"`, grown along from left to right.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line: Option<FlowLine>,
     /// Stroke length per rule application, mm (0.1–1000, default 8).
     #[serde(default = "default_module")]
     pub module: f64,
@@ -201,6 +216,16 @@ pub struct SketchSpec {
     /// holds), to show the growth step by step.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steps: Option<u32>,
+}
+
+/// A region line of the scene's flow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FlowLine {
+    /// `[lines] upper`.
+    Upper,
+    /// `[lines] lower`.
+    Lower,
 }
 
 /// The most rewriting steps of one system.
@@ -268,6 +293,8 @@ impl Default for LSystemSpec {
             tropism: None,
             view: View::default(),
             at: Vec::new(),
+            along: None,
+            count: None,
             rotate: 0.0,
             fit: None,
             sketch: None,
@@ -311,24 +338,31 @@ impl SketchSpec {
     }
 
     fn check(&self, f: &str) -> Result<()> {
-        match (&self.points, &self.svg) {
-            (Some(p), None) => points(&format!("{f}.points"), p, 2)?,
-            (None, Some(name)) if !name.trim().is_empty() => {}
-            (None, Some(_)) => {
-                return Err(Error::invalid(format!("{f}.svg"), "needs a file name"));
-            }
-            (None, None) => {
+        let given = [
+            self.points.is_some(),
+            self.svg.is_some(),
+            self.line.is_some(),
+        ];
+        match given.iter().filter(|g| **g).count() {
+            0 => {
                 return Err(Error::invalid(
                     f,
-                    "needs a stroke: `points = [[x, y], …]` or `svg = \"stroke.svg\"`",
+                    "needs a stroke: `points = [[x, y], …]`, `svg = \"stroke.svg\"` or `line = \"upper\"`",
                 ));
             }
-            (Some(_), Some(_)) => {
+            1 => {}
+            _ => {
                 return Err(Error::invalid(
                     f,
-                    "has both `points` and `svg`: give one stroke",
+                    "has more than one of `points`, `svg` and `line`: give one stroke",
                 ));
             }
+        }
+        if let Some(p) = &self.points {
+            points(&format!("{f}.points"), p, 2)?;
+        }
+        if self.svg.as_deref().is_some_and(|n| n.trim().is_empty()) {
+            return Err(Error::invalid(format!("{f}.svg"), "needs a file name"));
         }
         range(&format!("{f}.module"), self.module, 0.1, 1000.0)?;
         range(&format!("{f}.width"), self.width, 0.0, 50.0)?;
@@ -373,12 +407,31 @@ impl Family for LSystemSpec {
         for (i, p) in self.at.iter().enumerate() {
             point(&format!("{f}.at[{i}]"), *p)?;
         }
+        match (&self.along, self.count) {
+            (Some(_), _) if !self.at.is_empty() => {
+                return Err(Error::invalid(
+                    format!("{f}.along"),
+                    "and `at` both place the drawing: give one",
+                ));
+            }
+            (Some(line), count) => {
+                points(&format!("{f}.along"), line, 2)?;
+                range(&format!("{f}.count"), count.unwrap_or(1), 1, 1000)?;
+            }
+            (None, Some(_)) => {
+                return Err(Error::invalid(
+                    format!("{f}.count"),
+                    "spreads drawings along a line: give `along` too",
+                ));
+            }
+            (None, None) => {}
+        }
         if let Some([x0, y0, x1, y1]) = self.fit {
             let field = format!("{f}.fit");
-            if !self.at.is_empty() {
+            if !self.at.is_empty() || self.along.is_some() {
                 return Err(Error::invalid(
                     field,
-                    "is for a drawing fitted to the page; one placed by `at` is `step` mm per unit",
+                    "is for a drawing fitted to the page; one placed by `at` or `along` is `step` mm per unit",
                 ));
             }
             for v in [x0, y0, x1, y1] {
@@ -408,6 +461,7 @@ impl Family for LSystemSpec {
                 ("rules", !self.rules.is_empty()),
                 ("iterations", self.iterations > 0),
                 ("at", !self.at.is_empty()),
+                ("along", self.along.is_some()),
                 ("fit", self.fit.is_some()),
             ] {
                 if given {

@@ -29,7 +29,8 @@ pub use flora::{
 };
 pub use layer::{Family, LayerItem, LayerSpec, Table};
 pub use lsystem::{
-    LSystemSpec, NamedView, SketchSpec, TropismSpec, View, MAX_ITERATIONS as MAX_LSYSTEM_ITERATIONS,
+    FlowLine, LSystemSpec, NamedView, SketchSpec, TropismSpec, View,
+    MAX_ITERATIONS as MAX_LSYSTEM_ITERATIONS,
 };
 pub use params::{ResolvedTreeParams, TreeParams};
 pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};

@@ -6,9 +6,11 @@
 //! * **Seen**: orthographically, along the view's direction with its up up
 //!   the page (the turtle's frame has y up; the page has y down).
 //! * **Placed**: at each root of `at`, `step` mm per unit and turned by
-//!   `rotate`; or, with no roots, fitted into `fit` (the page inside its
+//!   `rotate`; or at `count` points along the line `along`, standing on
+//!   its upper side; or, with neither, fitted into `fit` (the page inside its
 //!   margins by default), aspect kept, centred. A sketch lies on its
-//!   stroke, in page millimetres, seen from the front.
+//!   stroke (points, an SVG's first path, or a region line of the
+//!   scene's flow), in page millimetres, seen from the front.
 //! * **Drawn**: each limb (a pen-down run of the turtle) is one path: the
 //!   exact polyline, or with `smooth` a natural spline through its
 //!   points; with `style = "outline"` a closed outline whose width follows
@@ -32,13 +34,13 @@ mod tests;
 use glam::DVec2;
 use kurbo::{Affine, BezPath, Point, Rect};
 
-use super::Context;
+use super::{flow_line, Context};
 use crate::error::{Error, Result};
-use crate::geom::TOLERANCE;
+use crate::geom::{PathWalker, Side, TOLERANCE};
 use crate::lsystem::sketch::Sketch;
 use crate::lsystem::{Skeleton, Turtle, TurtleOptions};
 use crate::scene::{Group, Style};
-use crate::spec::{LSystemSpec, LimbStyle, SketchSpec};
+use crate::spec::{FlowLine, LSystemSpec, LimbStyle, Points, SketchSpec};
 use draw::{flat, limb_path, polygon_path, Projection};
 use ornament::{ornaments, sites, Kind};
 
@@ -62,6 +64,8 @@ pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) ->
     let flat = flat(&skeleton, &projection);
     let placements: Vec<Affine> = if spec.sketch.is_some() {
         vec![Affine::IDENTITY]
+    } else if let Some(line) = &spec.along {
+        along(line, spec.count.unwrap_or(1), spec)
     } else if spec.at.is_empty() {
         // Scene coordinates start at the margins' corner.
         let frame = spec.fit.map_or_else(
@@ -111,6 +115,25 @@ pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) ->
         }
     }
     Ok(group)
+}
+
+/// The placements of `count` drawings evenly spread along `line` by arc
+/// length, each turned from heading up the page to standing on the
+/// line's upper side, then by `rotate`.
+fn along(line: &Points, count: u32, spec: &LSystemSpec) -> Vec<Affine> {
+    let walker = PathWalker::new(&flow_line(line), TOLERANCE);
+    (0..count)
+        .map(|i| {
+            let s = walker.length() * (f64::from(i) + 0.5) / f64::from(count);
+            let left = Side::Left.normal(walker.tangent_at(s));
+            let up = if left.y > 0.0 { -left } else { left };
+            // Turning (0, −1) clockwise by θ gives (sin θ, −cos θ).
+            let turn = up.x.atan2(-up.y) + spec.rotate.to_radians();
+            Affine::translate(walker.point_at(s).to_vec2())
+                * Affine::rotate(turn)
+                * Affine::scale(spec.step)
+        })
+        .collect()
 }
 
 /// The skeleton of a rewritten system, drawn by the turtle.
@@ -171,7 +194,21 @@ pub(crate) fn stroke_points(spec: &SketchSpec, cx: &Context<'_>) -> Result<Vec<D
             line
         }
         (None, Some(name)) => first_subpath(cx.library().paths(name)?),
-        (None, None) => BezPath::new(),
+        (None, None) => match spec.line {
+            Some(which) => {
+                let upper = which == FlowLine::Upper;
+                cx.flow().line(upper).cloned().ok_or_else(|| {
+                    Error::invalid(
+                        cx.field("sketch.line"),
+                        format!(
+                            "the scene has no {} region line: give [lines] {0} = [[x, y], …]",
+                            if upper { "upper" } else { "lower" }
+                        ),
+                    )
+                })?
+            }
+            None => BezPath::new(),
+        },
     };
     let mut out: Vec<DVec2> = Vec::new();
     kurbo::flatten(&path, TOLERANCE, |el| {

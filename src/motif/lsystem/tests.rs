@@ -268,3 +268,80 @@ fn flowers_sit_on_the_tips_and_leaves_where_the_turtle_met_their_symbol() {
             .contains("layers[0].lsystem[0].leaves.symbol")
     );
 }
+
+#[test]
+fn drawings_along_a_line_stand_on_its_upper_side() {
+    // Three upright strokes on a level line; on a line going up to the
+    // right at 45°, leaning to the upper left, perpendicular to it.
+    let level = scene("axiom = \"F\"\nalong = [[10, 150], [110, 150]]\ncount = 3\nstep = 10\n");
+    let p = paths(&level);
+    assert_eq!(p.len(), 3);
+    for (path, x) in p
+        .iter()
+        .zip([100.0 / 6.0 + 10.0, 60.0, 110.0 - 100.0 / 6.0])
+    {
+        let b = path.bounding_box();
+        // Arc length along the line is measured flattened: within 0.01 mm.
+        assert!((b.x0 - x).abs() < 0.01 && b.width() < 1e-6, "{b:?} at {x}");
+        assert!(
+            (b.y1 - 150.0).abs() < 1e-6 && (b.y0 - 140.0).abs() < 1e-6,
+            "{b:?}"
+        );
+    }
+    let slope = scene("axiom = \"F\"\nalong = [[10, 150], [110, 50]]\nstep = 10\n");
+    let seg = paths(&slope)[0].segments().next().unwrap();
+    let (a, b) = (seg.start(), seg.end());
+    assert!(a.distance(Point::new(60.0, 100.0)) < 0.01, "{a:?}");
+    let d = (b - a) / 10.0;
+    let r = std::f64::consts::FRAC_1_SQRT_2;
+    assert!((d.x + r).abs() < 1e-6 && (d.y + r).abs() < 1e-6, "{d:?}");
+}
+
+#[test]
+fn a_sketch_grows_along_a_region_line_of_the_flow() {
+    let text = "version = 1\nseed = 5\npage = { size = \"A5\", margin = 10 }\n\
+                [lines]\nupper = [[120, 40], [60, 60], [5, 40]]\n\
+                [[layers]]\nname = \"l\"\n[[layers.lsystem]]\n\
+                [layers.lsystem.sketch]\nline = \"upper\"\nmodule = 10\n";
+    let spec = crate::spec::SceneSpec::parse(text, crate::spec::Format::Toml).unwrap();
+    let s = crate::project::build_scene(&spec).unwrap();
+    let b = bounds(&paths(&s));
+    // Along the line, left to right: about 130 mm of it.
+    assert!(b.x0 < 10.0 && b.x1 > 110.0, "{b:?}");
+    let no_line = text.replace("[lines]\nupper = [[120, 40], [60, 60], [5, 40]]\n", "");
+    let spec = crate::spec::SceneSpec::parse(&no_line, crate::spec::Format::Toml).unwrap();
+    let e = crate::project::build_scene(&spec).unwrap_err().to_string();
+    assert!(
+        e.contains("layers[0].lsystem[0].sketch.line: the scene has no upper region line"),
+        "{e}"
+    );
+}
+
+#[test]
+fn placements_that_contradict_each_other_are_refused() {
+    for (table, expected) in [
+        (
+            "axiom = \"F\"\nat = [[0, 0]]\nalong = [[0, 0], [50, 0]]\n",
+            "layers[0].lsystem[0].along: and `at` both place the drawing",
+        ),
+        (
+            "axiom = \"F\"\ncount = 3\n",
+            "layers[0].lsystem[0].count: spreads drawings along a line",
+        ),
+        (
+            "axiom = \"F\"\nalong = [[0, 0], [50, 0]]\ncount = 0\n",
+            "layers[0].lsystem[0].count: must be between 1 and 1000",
+        ),
+        (
+            "axiom = \"F\"\nalong = [[0, 0], [50, 0]]\nfit = [0, 0, 10, 10]\n",
+            "layers[0].lsystem[0].fit",
+        ),
+        (
+            "[layers.lsystem.sketch]\npoints = [[0, 0], [0, 50]]\nline = \"lower\"\n",
+            "layers[0].lsystem[0].sketch: has more than one of",
+        ),
+    ] {
+        let e = error(table);
+        assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
+    }
+}
