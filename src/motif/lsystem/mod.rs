@@ -46,10 +46,10 @@ use ornament::{ornaments, sites, Kind};
 
 /// The most modules a word may reach while rewriting (ABOP fig. 1.24a at
 /// n = 10 has 24.4 million).
-pub(crate) const MAX_MODULES: usize = 50_000_000;
+const MAX_MODULES: usize = 50_000_000;
 
 /// The most segments the turtle or a sketch may draw.
-pub(crate) const MAX_SEGMENTS: usize = 10_000_000;
+const MAX_SEGMENTS: usize = 10_000_000;
 
 /// Limbs shorter than this on the page (mm) are not drawn.
 const MIN_LIMB: f64 = 0.05;
