@@ -98,10 +98,14 @@ fn frames_show_every_rewriting_step() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    let want: Vec<String> = (0..4)
+    let mut want: Vec<String> = (0..4)
         .flat_map(|k| [format!("frame-{k:03}.png"), format!("frame-{k:03}.svg")])
         .collect();
+    want.push("growth.svg".into());
     assert_eq!(names, want);
+    // The growth in one loop: every frame, taking turns.
+    let growth = fs::read_to_string(d.path().join("steps/growth.svg")).unwrap();
+    assert_eq!(growth.matches("<animate ").count(), 4);
     // Each step draws more: F has 1, 3, 9, 27 segments in 1, 2, 4, 8 limbs.
     let limbs = |k: usize| {
         let svg = fs::read_to_string(d.path().join(format!("steps/frame-{k:03}.svg"))).unwrap();

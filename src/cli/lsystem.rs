@@ -92,7 +92,8 @@ pub(crate) struct LSystemArgs {
     dpi: f64,
     /// Also write the drawing after every rewriting step (every module
     /// step with --stroke) into this folder: frame-000.svg, … (and .png
-    /// with --png).
+    /// with --png), and growth.svg, all of them in one loop (a browser
+    /// plays it).
     #[arg(long, value_name = "DIR", help_heading = "Output")]
     frames: Option<PathBuf>,
 }
@@ -270,6 +271,13 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
         Some(_) => frames(&spec, &base, &rendered, args)?,
         None => Vec::new(),
     };
+    let growth = match &args.frames {
+        Some(_) => {
+            let svgs: Vec<&str> = frames.iter().map(|(svg, _)| svg.as_str()).collect();
+            moyo::output::animated_svg(&svgs)?
+        }
+        None => String::new(),
+    };
     write_atomic(&args.output, rendered.svg.as_bytes())?;
     if let (Some(path), Some(bytes)) = (&args.png, &png) {
         write_atomic(path, bytes)?;
@@ -283,6 +291,7 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
                 write_atomic(&dir.join(format!("frame-{k:03}.png")), bytes)?;
             }
         }
+        write_atomic(&dir.join("growth.svg"), growth.as_bytes())?;
     }
     let stats = rendered.scene.stats();
     eprintln!(

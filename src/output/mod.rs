@@ -12,12 +12,14 @@
 //!   written from one stroke model (pens in order, flattened strokes,
 //!   closed or open, page to machine coordinates);
 //! - [`path_dump`]: a stable one-line-per-path text for snapshot tests;
+//! - [`animated_svg`]: frames of a growth in one looping SVG, to watch;
 //! - [`write_atomic`]: puts any of these on disk without half-written files;
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
 pub mod gcode;
 pub mod hpgl;
 
+mod animate;
 mod atomic;
 mod dump;
 mod number;
@@ -25,6 +27,7 @@ mod preview;
 mod strokes;
 mod svg;
 
+pub use animate::{animated_svg, FRAME_SECONDS};
 pub use atomic::write_atomic;
 pub use dump::path_dump;
 pub use number::write_number;
