@@ -345,3 +345,33 @@ fn placements_that_contradict_each_other_are_refused() {
         assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
     }
 }
+
+#[test]
+fn a_plant_in_front_hides_what_lies_behind_it() {
+    // A level line behind a trunk 10 mm wide (width 0.2 at 50 mm a unit):
+    // with hidden lines removed, 10 mm of it are gone.
+    let text = "version = 1\nseed = 5\npage = { size = \"A5\", margin = 10 }\n\
+                [plot.occlude]\n\
+                [[layers]]\nname = \"front\"\n[[layers.lsystem]]\naxiom = \"F\"\n\
+                at = [[60, 150]]\nstep = 50\nstyle = \"outline\"\nwidth = 0.2\n\
+                [[layers]]\nname = \"back\"\n[[layers.paths]]\npoints = [[0, 120], [120, 120]]\n";
+    let spec = crate::spec::SceneSpec::parse(text, crate::spec::Format::Toml).unwrap();
+    let rendered = crate::project::render(&spec).unwrap();
+    let mut behind = Vec::new();
+    let back = rendered
+        .scene
+        .layers
+        .iter()
+        .find(|l| l.name == "back")
+        .expect("the back layer");
+    back.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+        behind.push(t * p.path.clone())
+    });
+    let seen = length(&behind);
+    assert!((seen - 110.0).abs() < 0.01, "{seen} mm of the line seen");
+    // Without the plant, all 120 mm.
+    let alone = text.replace("axiom = \"F\"", "axiom = \"f\"");
+    let spec = crate::spec::SceneSpec::parse(&alone, crate::spec::Format::Toml).unwrap();
+    let rendered = crate::project::render(&spec).unwrap();
+    assert!((rendered.scene.stats().pen_down_mm - 120.0).abs() < 0.01);
+}
