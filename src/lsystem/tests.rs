@@ -28,6 +28,14 @@ fn derive(s: &LSystem, n: usize) -> Word {
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The message of the error `s` gives when derived `n` steps within a
+/// budget of `max` modules.
+fn derive_error(s: &LSystem, n: usize, max: usize) -> String {
+    s.derive(n, &mut Seed(1).stream(), max)
+        .unwrap_err()
+        .to_string()
+}
+
 fn words(axiom: &str, rules: &[&str], n: usize) -> Vec<String> {
     words_of(&system(axiom, rules), n)
 }
@@ -537,10 +545,7 @@ fn alternatives_need_weights() {
 #[test]
 fn runtime_errors_name_the_production_and_the_module() {
     let s = system("A(1,2)", &["B -> C", "A(x) -> A(x+1)"]);
-    let e = s
-        .derive(1, &mut Seed(1).stream(), 1000)
-        .unwrap_err()
-        .to_string();
+    let e = derive_error(&s, 1, 1000);
     assert_eq!(
         e,
         format!(
@@ -549,10 +554,7 @@ fn runtime_errors_name_the_production_and_the_module() {
         )
     );
     let s = system("FA(0)", &["A(x) -> A(1/x)"]);
-    let e = s
-        .derive(1, &mut Seed(1).stream(), 1000)
-        .unwrap_err()
-        .to_string();
+    let e = derive_error(&s, 1, 1000);
     assert_eq!(
         e,
         format!(
@@ -561,10 +563,7 @@ fn runtime_errors_name_the_production_and_the_module() {
         )
     );
     let s = system("A(1e200)", &["A(x) : x*x > 1 -> B"]);
-    let e = s
-        .derive(1, &mut Seed(1).stream(), 1000)
-        .unwrap_err()
-        .to_string();
+    let e = derive_error(&s, 1, 1000);
     assert!(
         e.contains("the condition: '*' gives a result that is not a finite number"),
         "{e}"
@@ -581,10 +580,7 @@ fn runtime_errors_name_the_production_and_the_module() {
 #[test]
 fn budgets_refuse_before_the_work() {
     let s = system("F", &["F -> FFFFFFFFFF"]);
-    let e = s
-        .derive(4, &mut Seed(1).stream(), 1000)
-        .unwrap_err()
-        .to_string();
+    let e = derive_error(&s, 4, 1000);
     assert_eq!(
         e,
         format!(
@@ -593,28 +589,19 @@ fn budgets_refuse_before_the_work() {
         )
     );
     // 10^40 modules: refused from the count alone, nothing is allocated.
-    let e = s
-        .derive(40, &mut Seed(1).stream(), 50_000_000)
-        .unwrap_err()
-        .to_string();
+    let e = derive_error(&s, 40, 50_000_000);
     assert!(
         e.contains("iteration 8 would make 100000000 modules"),
         "{e}"
     );
     // Parameters count too.
     let s = system("A(1)", &["A(x) -> A(x)A(x)"]);
-    let e = s
-        .derive(12, &mut Seed(1).stream(), 1000)
-        .unwrap_err()
-        .to_string();
+    let e = derive_error(&s, 12, 1000);
     assert!(e.contains("iteration 10 would make 1024 modules"), "{e}");
     // With a choice the size is known only as it grows: the step stops
     // at the limit.
     let s = system("F", &["F ->(1) FF", "F ->(1) FFF"]);
-    let e = s
-        .derive(30, &mut Seed(1).stream(), 100)
-        .unwrap_err()
-        .to_string();
+    let e = derive_error(&s, 30, 100);
     assert!(e.contains("makes more than 100 modules (the limit)"), "{e}");
     // The turtle's limit.
     let w = derive(&system("F", &["F -> F[+F]F[-F]F"]), 3);
