@@ -51,9 +51,10 @@
 //! [`output`] the writers (SVG, PNG, G-code, HPGL, path dump), [`input`]
 //! SVG import, [`geom`] the geometry toolkit (regions, clipping, offsets,
 //! splines), [`lsystem`] the L-system engine (rules, turtle, the
-//! stroke-guided sketch), [`motif`] the motif library, [`templates`] the built-in
-//! scenes, [`units`] paper sizes and lengths. Without the default `cli`
-//! feature the crate is the library alone.
+//! stroke-guided sketch), [`vine`] the twining-vine growth simulation (3D
+//! stems and leaves round supports), [`motif`] the motif library,
+//! [`templates`] the built-in scenes, [`units`] paper sizes and lengths.
+//! Without the default `cli` feature the crate is the library alone.
 
 // Lints are set in Cargo.toml. Unit tests do not use every dev-dependency
 // (those are the integration tests'), and the `cli` feature's crates are
@@ -77,6 +78,7 @@ mod scene;
 pub mod spec;
 pub mod templates;
 pub mod units;
+pub mod vine;
 
 // The chosen entry points, flat as kurbo's: a description becomes a
 // `ValidSpec`, `render` makes the scene and its SVG, `plot_scene` runs a
@@ -91,8 +93,8 @@ pub use project::{
 };
 pub use rng::{RandomStream, Seed};
 pub use scene::{
-    embedded_description, Color, Group, Layer, Node, PathBudget, Pen, Scene, Stats, Style,
-    StyledPath,
+    embedded_description, Color, Group, Layer, Model, ModelPart, Node, PathBudget, Pen, Scene,
+    Stats, Style, StyledPath,
 };
 pub use spec::{Format, SceneSpec, ValidSpec};
 pub use units::{Margins, Orientation, Page, PaperName};

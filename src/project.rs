@@ -16,8 +16,9 @@ use crate::motif::{self, Context, Flow};
 use crate::motif::{user_drawing, Library};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot;
-use crate::scene::{Color, Group, Layer, Pen, Scene};
+use crate::scene::{Color, Group, Layer, Model, Pen, Scene};
 use crate::spec::{LayerSpec, MotifRef, ValidSpec};
+use crate::vine::TriMesh;
 
 pub use crate::motif::{Note, Progress};
 
@@ -47,6 +48,9 @@ pub fn user_files(spec: &ValidSpec) -> UserFiles {
     for name in items.iter().flat_map(|i| i.table.family().image_files()) {
         push_new(&mut files.images, name);
     }
+    for name in items.iter().flat_map(|i| i.table.family().mesh_files()) {
+        push_new(&mut files.meshes, name);
+    }
     files
 }
 
@@ -59,6 +63,8 @@ pub struct UserFiles {
     pub paths: Vec<String>,
     /// PNG or JPEG files read as density.
     pub images: Vec<String>,
+    /// Wavefront OBJ files read as closed meshes.
+    pub meshes: Vec<String>,
 }
 
 fn push_new(list: &mut Vec<String>, name: &str) {
@@ -120,6 +126,23 @@ pub fn load_motifs_with(spec: &ValidSpec, read: &FileReader<'_>) -> Result<Libra
         let image = decode_image(&bytes).map_err(|e| unusable(name, shown, e.into()))?;
         library.add_image(name.clone(), image);
     }
+    for name in &files.meshes {
+        let (shown, bytes) = open(name)?;
+        let text = std::str::from_utf8(&bytes)
+            .map_err(|e| unusable(name, format!("{shown} is not UTF-8 text"), e.into()))?;
+        let mesh = TriMesh::parse_obj(text, &shown)
+            .and_then(|m| m.check_closed(&shown).map(|()| m))
+            .map_err(|e| Error::Motif {
+                name: name.clone(),
+                // The mesh's own error names the file (and the line).
+                message: match e {
+                    Error::Invalid { field, message, .. } => format!("{field}: {message}"),
+                    e => e.to_string(),
+                },
+                source: None,
+            })?;
+        library.add_mesh(name.clone(), mesh);
+    }
     Ok(library)
 }
 
@@ -172,16 +195,16 @@ pub fn build_scene_with_progress(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Scene> {
     build(spec, library, progress)
-        .map(|(scene, _)| scene)
+        .map(|(scene, _, _)| scene)
         .map_err(|e| spec.locate(e))
 }
 
-/// The scene and the generators' notes.
+/// The scene, the generators' notes and their 3D models.
 fn build(
     spec: &ValidSpec,
     library: &Library,
     progress: &mut dyn FnMut(Progress),
-) -> Result<(Scene, Vec<Note>)> {
+) -> Result<(Scene, Vec<Note>, Vec<Model>)> {
     let flow = Flow::new(&spec.lines);
     let ids = layer_ids(spec);
     let mut cx = Context::new(spec, library, &flow, progress);
@@ -201,7 +224,7 @@ fn build(
             content,
         });
     }
-    let notes = cx.finish()?;
+    let (notes, models) = cx.finish()?;
     let mut pens: Vec<Pen> = spec
         .pens
         .iter()
@@ -219,7 +242,7 @@ fn build(
         layers,
         description: Some(spec.to_toml()),
     };
-    Ok((scene, notes))
+    Ok((scene, notes, models))
 }
 
 /// Stable, unique, SVG-safe ids for the layers, made from their names.
@@ -267,6 +290,9 @@ pub struct Rendered {
     /// What the generators noted (how relaxations converged…), in scene
     /// order.
     pub notes: Vec<Note>,
+    /// The 3D models the generators made (a vine and its supports), for
+    /// [`crate::output::to_obj`]; empty for a flat scene.
+    pub models: Vec<Model>,
     /// The options `svg` was written with.
     options: SvgOptions,
 }
@@ -283,7 +309,7 @@ pub fn render_with_progress(
     library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Rendered> {
-    let (scene, notes) = build(spec, library, progress).map_err(|e| spec.locate(e))?;
+    let (scene, notes, models) = build(spec, library, progress).map_err(|e| spec.locate(e))?;
     let scene = plot::run(scene, &spec.plot)?;
     let options = svg_options(spec);
     let svg = to_svg(&scene, &options);
@@ -291,6 +317,7 @@ pub fn render_with_progress(
         scene,
         svg,
         notes,
+        models,
         options,
     })
 }

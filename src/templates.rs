@@ -69,6 +69,23 @@ pub const ALL: &[Template] = templates![
     "lsystem-sketch-s",
     "lsystem-sketch-spiral",
     "kimono-lsystem",
+    "vine-basic",
+    "vine-internode-100",
+    "vine-radius-4",
+    "vine-right",
+    "vine-interval-5",
+    "vine-angle-30",
+    "vine-untwined-2",
+    "vine-woody",
+    "vine-cotyledons-2",
+    "vine-opposite",
+    "vine-leaf-25",
+    "vine-growth",
+    "vine-leaves",
+    "vine-cross",
+    "vine-fence",
+    "vine-border",
+    "kimono-vine",
 ];
 
 impl Template {

@@ -447,7 +447,7 @@ fn documentation_layers_are_neither_hatched_nor_occluded() {
 // a missing interpreter is a failure (as the vpype test in compat.rs).
 
 /// The program named by `var`, or `None` (with a note) outside CI.
-fn interpreter(var: &str) -> Option<std::ffi::OsString> {
+pub(crate) fn interpreter(var: &str) -> Option<std::ffi::OsString> {
     let value = std::env::var_os(var);
     if value.is_none() {
         assert!(

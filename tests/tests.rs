@@ -16,3 +16,4 @@ mod plot_cli;
 mod readme;
 mod snapshots;
 mod valid_spec;
+mod vine_cli;

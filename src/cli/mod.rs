@@ -97,6 +97,10 @@ struct RenderArgs {
     /// Also write the line-oriented path dump (for snapshot tests).
     #[arg(long)]
     dump: Option<PathBuf>,
+    /// Also write the 3D model (vines and their supports) as Wavefront
+    /// OBJ, in millimetres, y up.
+    #[arg(long, value_name = "OBJ")]
+    obj: Option<PathBuf>,
 }
 
 /// Rejects a bad `--dpi` while parsing, whether or not `--png` is given.
@@ -228,6 +232,18 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         .dump
         .as_ref()
         .map(|_| rendered.dump(spec.output.precision));
+    let obj = match &args.obj {
+        Some(_) if rendered.models.is_empty() => {
+            return Err(CliError::Message(
+                "--obj: the scene has no 3D model (a `[[layers.vine]]` makes one)".into(),
+            ));
+        }
+        Some(_) => Some(moyo::output::to_obj(
+            &rendered.models,
+            spec.output.precision,
+        )),
+        None => None,
+    };
 
     write_atomic(&args.output, rendered.svg.as_bytes())?;
     if let (Some(path), Some(svg)) = (&args.preview_svg, &preview) {
@@ -239,9 +255,12 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     if let (Some(path), Some(text)) = (&args.dump, &dump) {
         write_atomic(path, text.as_bytes())?;
     }
+    if let (Some(path), Some(text)) = (&args.obj, &obj) {
+        write_atomic(path, text.as_bytes())?;
+    }
 
     let stats = rendered.scene.stats();
-    let also: Vec<String> = [&args.preview_svg, &args.png]
+    let also: Vec<String> = [&args.preview_svg, &args.png, &args.obj]
         .into_iter()
         .flatten()
         .map(|p| p.display().to_string())

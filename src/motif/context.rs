@@ -16,7 +16,7 @@ use super::flow::Flow;
 use crate::error::Result;
 use crate::geom::region::Region;
 use crate::rng::{RandomStream, Seed};
-use crate::scene::PathBudget;
+use crate::scene::{Model, PathBudget};
 use crate::spec::{LayerSpec, PenSpec, ValidSpec};
 use crate::units::Page;
 
@@ -63,6 +63,7 @@ pub struct Context<'a> {
     progress: Progress,
     report: &'a mut dyn FnMut(Progress),
     notes: Vec<Note>,
+    models: Vec<Model>,
     pens: &'a [PenSpec],
     /// The names of the layers whose regions a later table fills.
     read: BTreeSet<&'a str>,
@@ -97,6 +98,7 @@ impl<'a> Context<'a> {
             progress: Progress { done: 0, total },
             report,
             notes: Vec::new(),
+            models: Vec::new(),
             pens: &spec.pens,
             read: spec
                 .layers
@@ -267,14 +269,20 @@ impl<'a> Context<'a> {
         });
     }
 
+    /// Hands on the 3D model a generator made beside its drawing (for
+    /// the OBJ export).
+    pub fn model(&mut self, model: Model) {
+        self.models.push(model);
+    }
+
     /// Ends the scene: every adjustment must have found its target. Gives
-    /// the notes, in the order they were made.
+    /// the notes and the 3D models, in the order they were made.
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] naming the first `adjust[i].id` that
     /// matched nothing.
-    pub(crate) fn finish(self) -> Result<Vec<Note>> {
+    pub(crate) fn finish(self) -> Result<(Vec<Note>, Vec<Model>)> {
         self.adjust.finish()?;
-        Ok(self.notes)
+        Ok((self.notes, self.models))
     }
 }

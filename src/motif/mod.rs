@@ -24,9 +24,11 @@ mod kimono;
 mod lsystem;
 mod paths;
 mod region;
+mod stroke;
 #[cfg(test)]
 mod test_scene;
 mod tree;
+mod vine;
 mod voronoi;
 mod zentangle;
 
@@ -35,6 +37,9 @@ pub use context::{Note, Progress};
 pub(crate) use flora::user_drawing;
 pub use flora::{draw, Drawing, Library, MotifParams};
 pub(crate) use flow::{flow_line, Flow};
+pub(crate) use stroke::{stroke_points, Stroke};
+
+use kurbo::{Affine, Rect};
 
 use crate::error::Result;
 use crate::scene::Group;
@@ -58,7 +63,24 @@ pub fn build(item: &LayerItem<'_>, cx: &mut Context<'_>) -> Result<Group> {
         Table::Voronoi(t) => voronoi::build(t, &id, cx),
         Table::Zentangle(t) => zentangle::build(t, &id, cx),
         Table::LSystem(t) => lsystem::build(t, &id, cx),
+        Table::Vine(t) => vine::build(t, &id, cx),
     }?;
     cx.advance_to(done);
     Ok(group)
+}
+
+/// The map that puts `drawn` (a drawing's own units, already y down) into
+/// the middle of `frame`, as large as fits with the aspect kept.
+pub(crate) fn fitted(drawn: Rect, frame: Rect) -> Affine {
+    let (w, h) = (drawn.width(), drawn.height());
+    let scale = match (w > 1e-12, h > 1e-12) {
+        (true, true) => (frame.width() / w).min(frame.height() / h),
+        (true, false) => frame.width() / w,
+        (false, true) => frame.height() / h,
+        // A single point: nothing to size.
+        (false, false) => 1.0,
+    };
+    Affine::translate(frame.center().to_vec2())
+        * Affine::scale(scale)
+        * Affine::translate(-drawn.center().to_vec2())
 }

@@ -12,6 +12,8 @@
 //!   written from one stroke model (pens in order, flattened strokes,
 //!   closed or open, page to machine coordinates);
 //! - [`path_dump`]: a stable one-line-per-path text for snapshot tests;
+//! - [`to_obj`]: the 3D models beside a drawing (a vine and its supports)
+//!   as Wavefront OBJ;
 //! - [`animated_svg`]: frames of a growth in one looping SVG, to watch;
 //! - [`write_atomic`]: puts any of these on disk without half-written files;
 //! - [`write_number`]: the single number formatter behind all text outputs.
@@ -23,6 +25,7 @@ mod animate;
 mod atomic;
 mod dump;
 mod number;
+mod obj;
 mod preview;
 mod strokes;
 mod svg;
@@ -31,5 +34,6 @@ pub use animate::{animated_svg, FRAME_SECONDS};
 pub use atomic::write_atomic;
 pub use dump::path_dump;
 pub use number::write_number;
+pub use obj::to_obj;
 pub use preview::{check_dpi, render_png};
 pub use svg::{to_svg, SvgOptions};

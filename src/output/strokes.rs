@@ -82,7 +82,7 @@ pub(super) fn pen_blocks(scene: &Scene, tolerance: f64) -> Vec<PenBlock<'_>> {
         let mut paths = Vec::new();
         for layer in layers.iter().filter(|l| l.pen == number) {
             layer.content.visit_paths(page, &mut |p, t| {
-                if p.style.fill_only {
+                if !p.style.is_drawn() {
                     return;
                 }
                 let strokes = flatten_strokes(p.path.iter().map(|el| t * el), tolerance);

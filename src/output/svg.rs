@@ -291,8 +291,9 @@ impl Writer {
         for child in &group.children {
             match child {
                 Node::Group(g) => self.group(g, depth + 1),
-                // Preview colour: no pen draws it.
-                Node::Path(p) if p.style.fill_only && !self.preview => {}
+                // Preview colour: no pen draws it. A mask is not drawn at
+                // all.
+                Node::Path(p) if p.style.mask || (p.style.fill_only && !self.preview) => {}
                 Node::Path(p) => self.path(p, depth + 1),
             }
         }

@@ -94,8 +94,9 @@ pub fn by_pen(scene: &Scene) -> Scene {
             .filter(|l| l.pen == number && l.is_plotted())
         {
             layer.content.visit_paths(page_transform, &mut |p, t| {
-                // A fill without a stroke is preview colour: nothing to plot.
-                if p.style.fill_only {
+                // A fill without a stroke is preview colour, a mask only
+                // hides: nothing to plot.
+                if !p.style.is_drawn() {
                     return;
                 }
                 content.children.push(Node::Path(StyledPath {

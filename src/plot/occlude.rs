@@ -303,8 +303,11 @@ struct Painted {
     to_page: Affine,
     /// The path on the page.
     page: BezPath,
-    /// Whether it is filled.
+    /// Whether it is filled (a mask counts as filled).
     filled: bool,
+    /// Whether it is a [mask](crate::scene::Style::mask): it hides and is
+    /// never hidden.
+    mask: bool,
 }
 
 /// A shape that hides what is painted before it.
@@ -350,7 +353,8 @@ fn collect(group: &Group, outer: Affine, layer: usize, out: &mut Vec<Painted>) -
                     layer,
                     to_page: here,
                     page,
-                    filled: p.style.fill.is_some(),
+                    filled: p.style.fill.is_some() || p.style.mask,
+                    mask: p.style.mask,
                 });
             }
         }
@@ -433,7 +437,7 @@ fn hide(
         .iter()
         .enumerate()
         .map(|(paint, p)| {
-            if !invertible(p.to_page) {
+            if p.mask || !invertible(p.to_page) {
                 return Outcome::Keep;
             }
             let segment_boxes: Vec<Rect> = p.page.segments().map(|s| s.bounding_box()).collect();
@@ -879,6 +883,31 @@ mod tests {
         // Wholly behind: removed.
         let big = square(-20.0, -20.0, 30.0, 30.0);
         assert_eq!(visible(front(big, None), &d), 0.0);
+    }
+
+    #[test]
+    fn a_mask_hides_as_a_fill_and_is_never_hidden() {
+        // Behind: a line; in front: an open mask (closed as a fill closes
+        // it), then a square in front of the mask.
+        let mut g = group_of(
+            "g",
+            vec![("line", Line::new((-10.0, 5.0), (20.0, 5.0)).to_path(0.0))],
+        );
+        let mut open = BezPath::new();
+        open.move_to((0.0, 0.0));
+        open.line_to((10.0, 0.0));
+        open.line_to((10.0, 10.0));
+        open.line_to((0.0, 10.0));
+        let mask = Style {
+            mask: true,
+            ..Style::default()
+        };
+        g.push_path("mask", open.clone(), mask);
+        g.push_path("front", square(2.0, 2.0, 8.0, 8.0), Style::default());
+        let mut s = scene(vec![layer("l", 0, g)]);
+        run(&mut s, &OccludeOptions::DEFAULT).unwrap();
+        assert!((path_length(&path_by_id(&s, "line").unwrap().path) - 20.0).abs() < 1e-9);
+        assert_eq!(path_by_id(&s, "mask").unwrap().path, open);
     }
 
     #[test]

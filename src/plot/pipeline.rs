@@ -8,7 +8,9 @@
 //! are removed, so the hatching of a back shape is hidden like any other
 //! stroke while its closed outline still hides what lies behind it; hidden
 //! lines are removed while the depth layers still exist; the per-pen stages
-//! work on one flat layer per pen, which is what a plotter runs.
+//! work on one flat layer per pen, which is what a plotter runs. Masks
+//! ([`crate::scene::Style::mask`]) leave the scene after hidden-line
+//! removal, which is all they are for.
 
 use serde::{Deserialize, Serialize};
 
@@ -17,7 +19,7 @@ use super::{
     MergeOptions, MultipassOptions, OccludeOptions, SimplifyOptions, SortOptions, TransformOptions,
 };
 use crate::error::{Error, Result};
-use crate::scene::Scene;
+use crate::scene::{Group, Node, Scene};
 
 /// Which stages run, with their options. `None` (absent in a file) skips a
 /// stage; an empty table runs it with its defaults.
@@ -130,6 +132,17 @@ impl PlotOptions {
     }
 }
 
+/// Removes every [mask](crate::scene::Style::mask) below `group`.
+fn drop_masks(group: &mut Group) {
+    group.children.retain_mut(|child| match child {
+        Node::Group(g) => {
+            drop_masks(g);
+            true
+        }
+        Node::Path(p) => !p.style.mask,
+    });
+}
+
 /// Puts `prefix.` before the field of an [`Error::Invalid`].
 fn prefix(e: Error, prefix: &str) -> Error {
     match e {
@@ -164,6 +177,10 @@ pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
         occlude::run(&mut scene, &occ)?;
     }
     flatten::restore_unplotted(&mut scene, unplotted);
+    // Masks have hidden what they hide (or there was nothing to hide).
+    for layer in &mut scene.layers {
+        drop_masks(&mut layer.content);
+    }
     if !o.per_pen() {
         return Ok(scene);
     }
@@ -181,4 +198,42 @@ pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
         multipass::run(&mut flat, m);
     }
     Ok(flat)
+}
+
+#[cfg(test)]
+mod tests {
+    use kurbo::{Rect, Shape};
+
+    use super::*;
+    use crate::scene::Style;
+    use crate::units::{Margins, Orientation, Page, PaperName};
+
+    #[test]
+    fn masks_leave_the_scene_with_or_without_hidden_line_removal() {
+        let mut content = Group::new("g");
+        let mask = Style {
+            mask: true,
+            ..Style::default()
+        };
+        content.push_path("mask", Rect::new(0.0, 0.0, 5.0, 5.0).to_path(0.0), mask);
+        content.push_path(
+            "line",
+            Rect::new(1.0, 1.0, 9.0, 9.0).to_path(0.0),
+            Style::default(),
+        );
+        let page = Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0));
+        let scene = Scene::one_pen(page, content);
+        for options in [
+            PlotOptions::default(),
+            PlotOptions {
+                occlude: Some(OccludeOptions::DEFAULT),
+                ..PlotOptions::default()
+            },
+        ] {
+            let out = run(scene.clone(), &options).unwrap();
+            let mut ids = Vec::new();
+            out.visit_paths(|_, p, _| ids.push(p.id.clone()));
+            assert_eq!(ids, ["line"]);
+        }
+    }
 }

@@ -372,7 +372,7 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     if let Some(image) = &job.image {
         library.add_image(IMAGE, image.clone());
     }
-    let (mut built, notes) = build(&spec, &library, &mut |_| {})
+    let (mut built, notes, _) = build(&spec, &library, &mut |_| {})
         .map_err(|e| spec.locate(e))
         .map_err(by_option)?;
     // Black parts of a zentangle are hatched by its own pen, as in a
@@ -530,6 +530,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
             voronoi: voronoi.into_iter().collect(),
             zentangle: zentangle.into_iter().collect(),
             lsystem: Vec::new(),
+            vine: Vec::new(),
         }],
         plot: PlotOptions::default(),
         adjust: Vec::new(),
@@ -573,7 +574,7 @@ fn closed_shapes(drawing: &Scene) -> BezPath {
     let mut out = BezPath::new();
     for layer in drawing.layers.iter().filter(|l| l.is_plotted()) {
         layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
-            if p.style.fill_only {
+            if !p.style.is_drawn() {
                 return;
             }
             let path = t * p.path.clone();

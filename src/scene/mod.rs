@@ -10,10 +10,12 @@
 mod budget;
 mod color;
 pub(crate) mod embed;
+mod model;
 
 pub use budget::PathBudget;
 pub use color::Color;
 pub use embed::embedded_description;
+pub use model::{Model, ModelPart};
 
 use kurbo::{Affine, BezPath, Rect, Shape};
 
@@ -46,6 +48,21 @@ pub struct Style {
     /// ([`crate::plot::occlude`]). A pen has nothing to draw here, so the
     /// plot outputs (per-pen stages, G-code, HPGL, stats) leave it out.
     pub fill_only: bool,
+    /// Never drawn, by a pen or in the preview: the area the path encloses
+    /// (non-zero) only hides what lies behind it in hidden-line removal
+    /// ([`crate::plot::occlude`]), for a solid shape that its generator
+    /// drew as open pieces (a vine seen through a camera, its own hidden
+    /// lines already removed). The plot stages drop it once it has done
+    /// that.
+    pub mask: bool,
+}
+
+impl Style {
+    /// Whether a pen draws the path: neither preview colour
+    /// ([`Style::fill_only`]) nor a [`Style::mask`].
+    pub fn is_drawn(&self) -> bool {
+        !self.fill_only && !self.mask
+    }
 }
 
 /// A path with its style and stable id.
@@ -279,8 +296,9 @@ impl Scene {
     fn stats_where(&self, keep: impl Fn(&Layer) -> bool) -> Stats {
         let mut s = Stats::default();
         self.visit_paths(|layer, p, t| {
-            // Fill-only paths are preview colour; no pen draws them.
-            if keep(layer) && !p.style.fill_only {
+            // Fill-only paths are preview colour and masks hide only; no
+            // pen draws them.
+            if keep(layer) && p.style.is_drawn() {
                 s.paths += 1;
                 s.pen_down_mm += crate::geom::path_length(&(t * p.path.clone()));
             }

@@ -140,7 +140,7 @@ impl MotifRef {
         }
     }
 
-    fn check(&self, f: &str) -> Result<()> {
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
         match self {
             MotifRef::Name(_) => Ok(()),
             MotifRef::Built(b) => {

@@ -12,7 +12,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    BackgroundSpec, LSystemSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec, VoronoiSpec,
+    BackgroundSpec, LSystemSpec, LimbSpec, MotifRef, PathsSpec, TreeSetSpec, VineSpec, VoronoiSpec,
     ZentangleSpec,
 };
 use crate::error::Result;
@@ -50,6 +50,9 @@ pub struct LayerSpec {
     /// L-systems: rules drawn by a turtle, or grown along a stroke.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lsystem: Vec<LSystemSpec>,
+    /// Twining vines grown round their supports in 3D.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub vine: Vec<VineSpec>,
 }
 
 fn default_pen_number() -> u32 {
@@ -72,6 +75,8 @@ pub enum Table<'a> {
     Zentangle(&'a ZentangleSpec),
     /// `[[layers.lsystem]]`: an L-system or a sketch along a stroke.
     LSystem(&'a LSystemSpec),
+    /// `[[layers.vine]]`: a twining vine round its supports.
+    Vine(&'a VineSpec),
 }
 
 /// What the seam needs from every family's table.
@@ -105,6 +110,12 @@ pub trait Family {
         Vec::new()
     }
 
+    /// The Wavefront OBJ files it reads as closed meshes, relative to the
+    /// description.
+    fn mesh_files(&self) -> Vec<&str> {
+        Vec::new()
+    }
+
     /// The layers whose regions it fills, by name, each with the field
     /// that names it below the table (`region.layer`). They must come
     /// before its own layer and offer regions.
@@ -129,6 +140,7 @@ impl<'a> Table<'a> {
             Table::Voronoi(t) => t,
             Table::Zentangle(t) => t,
             Table::LSystem(t) => t,
+            Table::Vine(t) => t,
         }
     }
 }
@@ -178,6 +190,7 @@ impl LayerSpec {
             |t| &t.id,
             Table::LSystem,
         );
+        numbered(&mut items, "vine", &self.vine, |t| &t.id, Table::Vine);
         items
     }
 }

@@ -218,6 +218,39 @@ pub struct SketchSpec {
     pub steps: Option<u32>,
 }
 
+/// Checks that exactly one of a stroke's three sources is given, and
+/// given well.
+pub(super) fn one_stroke(
+    f: &str,
+    given_points: Option<&Points>,
+    svg: Option<&str>,
+    line: Option<FlowLine>,
+) -> Result<()> {
+    let given = [given_points.is_some(), svg.is_some(), line.is_some()];
+    match given.iter().filter(|g| **g).count() {
+        0 => {
+            return Err(Error::invalid(
+                f,
+                "needs a stroke: `points = [[x, y], …]`, `svg = \"stroke.svg\"` or `line = \"upper\"`",
+            ));
+        }
+        1 => {}
+        _ => {
+            return Err(Error::invalid(
+                f,
+                "has more than one of `points`, `svg` and `line`: give one stroke",
+            ));
+        }
+    }
+    if let Some(p) = given_points {
+        points(&format!("{f}.points"), p, 2)?;
+    }
+    if svg.is_some_and(|n| n.trim().is_empty()) {
+        return Err(Error::invalid(format!("{f}.svg"), "needs a file name"));
+    }
+    Ok(())
+}
+
 /// A region line of the scene's flow.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -338,32 +371,7 @@ impl SketchSpec {
     }
 
     fn check(&self, f: &str) -> Result<()> {
-        let given = [
-            self.points.is_some(),
-            self.svg.is_some(),
-            self.line.is_some(),
-        ];
-        match given.iter().filter(|g| **g).count() {
-            0 => {
-                return Err(Error::invalid(
-                    f,
-                    "needs a stroke: `points = [[x, y], …]`, `svg = \"stroke.svg\"` or `line = \"upper\"`",
-                ));
-            }
-            1 => {}
-            _ => {
-                return Err(Error::invalid(
-                    f,
-                    "has more than one of `points`, `svg` and `line`: give one stroke",
-                ));
-            }
-        }
-        if let Some(p) = &self.points {
-            points(&format!("{f}.points"), p, 2)?;
-        }
-        if self.svg.as_deref().is_some_and(|n| n.trim().is_empty()) {
-            return Err(Error::invalid(format!("{f}.svg"), "needs a file name"));
-        }
+        one_stroke(f, self.points.as_ref(), self.svg.as_deref(), self.line)?;
         range(&format!("{f}.module"), self.module, 0.1, 1000.0)?;
         range(&format!("{f}.width"), self.width, 0.0, 50.0)?;
         self.rules(f).map(|_| ())

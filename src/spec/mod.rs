@@ -19,6 +19,7 @@ mod region;
 mod trees;
 mod valid;
 mod validate;
+mod vine;
 mod voronoi;
 mod zentangle;
 
@@ -37,6 +38,7 @@ pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
 pub use region::{CircleSpec, HoleSpec, RegionSpec};
 pub use trees::{Growth, LimbSpec, LimbStyle, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
+pub use vine::{CameraPreset, CameraSpec, GuideSpec, Part, SupportSpec, VineSpec};
 pub use voronoi::{
     Distribution, Draw, RelaxationMethod, SitesSpec, VoronoiSpec, DEFAULT_SPACING, MAX_RELAX,
     MAX_SITES,

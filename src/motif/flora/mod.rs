@@ -38,6 +38,7 @@ use crate::geom::region::{FillRule, Region};
 use crate::geom::subpath::subpaths;
 use crate::rng::RandomStream;
 use crate::spec::{MotifKind, MotifRef};
+use crate::vine::TriMesh;
 
 /// A motif drawn in motif units (see the module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -111,6 +112,7 @@ pub struct Library {
     user: BTreeMap<String, Drawing>,
     paths: BTreeMap<String, BezPath>,
     images: BTreeMap<String, GreyImage>,
+    meshes: BTreeMap<String, TriMesh>,
     plain: RwLock<Plain>,
 }
 
@@ -123,6 +125,7 @@ impl Clone for Library {
             user: self.user.clone(),
             paths: self.paths.clone(),
             images: self.images.clone(),
+            meshes: self.meshes.clone(),
             plain: RwLock::new(self.cached().clone()),
         }
     }
@@ -150,6 +153,24 @@ impl Library {
     /// (the `image` of a `[[layers.voronoi]]` table's sites).
     pub fn add_image(&mut self, name: impl Into<String>, image: GreyImage) {
         self.images.insert(name.into(), image);
+    }
+
+    /// Adds a closed triangle mesh under the name the description uses
+    /// for it (the `obj` of a vine's mesh support), in the file's units.
+    pub fn add_mesh(&mut self, name: impl Into<String>, mesh: TriMesh) {
+        self.meshes.insert(name.into(), mesh);
+    }
+
+    /// The mesh loaded under `name`.
+    ///
+    /// # Errors
+    /// [`Error::Motif`] when no mesh of that name was loaded.
+    pub fn mesh(&self, name: &str) -> Result<&TriMesh> {
+        self.meshes.get(name).ok_or_else(|| Error::Motif {
+            name: name.to_string(),
+            message: "was not loaded (meshes are read by the caller of the generator)".into(),
+            source: None,
+        })
     }
 
     /// The image loaded under `name`.

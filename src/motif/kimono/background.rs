@@ -246,6 +246,7 @@ fn paint_style(paint: &PaintSpec) -> Style {
         fill: paint.color(),
         hatch: paint.hatch,
         fill_only: false,
+        mask: false,
     }
 }
 
@@ -256,6 +257,7 @@ fn solid_style(paint: &PaintSpec) -> Style {
         fill: style.fill.or(Some(SOLID_GREY)),
         hatch: style.hatch.or(Some(SOLID_HATCH)),
         fill_only: false,
+        mask: false,
     }
 }
 

@@ -78,6 +78,7 @@ fn style(paint: &PaintSpec) -> Style {
         fill: paint.color(),
         hatch: paint.hatch,
         fill_only: false,
+        mask: false,
     }
 }
 

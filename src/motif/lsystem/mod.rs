@@ -32,15 +32,15 @@ mod ornament;
 mod tests;
 
 use glam::DVec2;
-use kurbo::{Affine, BezPath, Point, Rect};
+use kurbo::{Affine, Point, Rect};
 
-use super::{flow_line, Context};
-use crate::error::{Error, Result};
+use super::{fitted, flow_line, stroke_points, Context, Stroke};
+use crate::error::Result;
 use crate::geom::{PathWalker, Side, TOLERANCE};
 use crate::lsystem::sketch::Sketch;
 use crate::lsystem::{Skeleton, Turtle, TurtleOptions};
 use crate::scene::{Group, Style};
-use crate::spec::{FlowLine, LSystemSpec, LimbStyle, Points, SketchSpec};
+use crate::spec::{LSystemSpec, LimbStyle, Points, SketchSpec};
 use draw::{flat, limb_path, polygon_path, Projection};
 use ornament::{ornaments, sites, Kind};
 
@@ -168,7 +168,16 @@ fn marked(spec: &LSystemSpec) -> String {
 fn grow_sketch(spec: &SketchSpec, cx: &mut Context<'_>) -> Result<Skeleton> {
     let field = cx.field("sketch");
     let rules = spec.rules(&field)?;
-    let mut stroke = stroke_points(spec, cx)?;
+    let mut stroke = stroke_points(
+        &Stroke {
+            points: spec.points.as_ref(),
+            smooth: spec.smooth,
+            svg: spec.svg.as_deref(),
+            line: spec.line,
+        },
+        &cx.field("sketch"),
+        cx,
+    )?;
     if let Some(k) = spec.steps {
         // A hair past k modules, so that rounding cannot lose the last.
         cut(&mut stroke, f64::from(k) * spec.module + 1e-9);
@@ -176,53 +185,6 @@ fn grow_sketch(spec: &SketchSpec, cx: &mut Context<'_>) -> Result<Skeleton> {
     let mut sketch = Sketch::new(rules, MAX_SEGMENTS)?;
     sketch.extend(&stroke)?;
     Ok(sketch.skeleton())
-}
-
-/// The stroke of a sketch as a dense polyline (page mm).
-pub(crate) fn stroke_points(spec: &SketchSpec, cx: &Context<'_>) -> Result<Vec<DVec2>> {
-    let path = match (&spec.points, &spec.svg) {
-        (Some(points), _) if spec.smooth => super::flow_line(points),
-        (Some(points), _) => {
-            let mut line = BezPath::new();
-            for (i, &[x, y]) in points.iter().enumerate() {
-                if i == 0 {
-                    line.move_to((x, y));
-                } else {
-                    line.line_to((x, y));
-                }
-            }
-            line
-        }
-        (None, Some(name)) => first_subpath(cx.library().paths(name)?),
-        (None, None) => match spec.line {
-            Some(which) => {
-                let upper = which == FlowLine::Upper;
-                cx.flow().line(upper).cloned().ok_or_else(|| {
-                    Error::invalid(
-                        cx.field("sketch.line"),
-                        format!(
-                            "the scene has no {} region line: give [lines] {0} = [[x, y], …]",
-                            if upper { "upper" } else { "lower" }
-                        ),
-                    )
-                })?
-            }
-            None => BezPath::new(),
-        },
-    };
-    let mut out: Vec<DVec2> = Vec::new();
-    kurbo::flatten(&path, TOLERANCE, |el| {
-        if let kurbo::PathEl::MoveTo(p) | kurbo::PathEl::LineTo(p) = el {
-            out.push(DVec2::new(p.x, p.y));
-        }
-    });
-    if out.len() < 2 {
-        return Err(Error::invalid(
-            cx.field("sketch"),
-            "its stroke is empty: a sketch needs a line to grow along",
-        ));
-    }
-    Ok(out)
 }
 
 /// Cuts the polyline `line` where it is `length` long.
@@ -242,32 +204,4 @@ fn cut(line: &mut Vec<DVec2>, length: f64) {
         }
         walked += step;
     }
-}
-
-/// The first subpath of `path`.
-fn first_subpath(path: &BezPath) -> BezPath {
-    let mut out = BezPath::new();
-    for el in path.elements() {
-        if matches!(el, kurbo::PathEl::MoveTo(_)) && !out.elements().is_empty() {
-            break;
-        }
-        out.push(*el);
-    }
-    out
-}
-
-/// The map that puts `drawn` (turtle units, already y down) into the
-/// middle of `frame`, as large as fits with the aspect kept.
-fn fitted(drawn: Rect, frame: Rect) -> Affine {
-    let (w, h) = (drawn.width(), drawn.height());
-    let scale = match (w > 1e-12, h > 1e-12) {
-        (true, true) => (frame.width() / w).min(frame.height() / h),
-        (true, false) => frame.width() / w,
-        (false, true) => frame.height() / h,
-        // A single point: nothing to size.
-        (false, false) => 1.0,
-    };
-    Affine::translate(frame.center().to_vec2())
-        * Affine::scale(scale)
-        * Affine::translate(-drawn.center().to_vec2())
 }

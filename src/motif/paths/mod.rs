@@ -39,6 +39,7 @@ pub(super) fn build(spec: &PathsSpec, group_id: &str, cx: &mut Context<'_>) -> R
         fill: spec.paint.color(),
         hatch: spec.paint.hatch,
         fill_only: false,
+        mask: false,
     };
     let shape = Affine::rotate(spec.rotate.to_radians())
         * Affine::scale(fit * spec.scale)

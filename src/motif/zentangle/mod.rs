@@ -168,6 +168,7 @@ fn emit(
             fill: Some(Color::BLACK),
             hatch: (spec.black == Black::Hatch).then_some(spec.hatch),
             fill_only: false,
+            mask: false,
         };
         part.push_path(format!("{id}.black-{i}"), region.into_path(), style);
     }

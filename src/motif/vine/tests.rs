@@ -1,0 +1,325 @@
+use glam::DVec3;
+use kurbo::{Affine, BezPath, ParamCurveArclen, Shape as _};
+
+use super::sight::{camera_for, Sight};
+use crate::motif::{test_scene, Library};
+use crate::rng::Seed;
+use crate::scene::Scene;
+use crate::spec::{Format, Part, SceneSpec, VineSpec};
+use crate::vine::{self, Plant, Supports, TriMesh};
+
+fn scene(table: &str) -> Scene {
+    test_scene::scene("vine", table)
+}
+
+fn error(table: &str) -> String {
+    test_scene::error("vine", table)
+}
+
+/// A vine table on its own, with what it grows.
+fn grown(table: &str) -> (VineSpec, Plant, Supports) {
+    let spec: VineSpec = toml::from_str(table).unwrap();
+    let supports = Supports::new(spec.shapes("vine", &|_| unreachable!()).unwrap());
+    let plant = vine::grow(
+        &spec.params(spec.roots[0]),
+        &supports,
+        &mut Seed(5).stream(),
+    )
+    .unwrap();
+    (spec, plant, supports)
+}
+
+fn sight(spec: &VineSpec, plant: &Plant, supports: &Supports) -> Sight {
+    let library = Library::new();
+    let mut rng = Seed(1).stream();
+    let leaves: Vec<_> = plant
+        .leaves
+        .iter()
+        .map(|_| library.draw(&spec.leaf, &mut rng).unwrap())
+        .collect();
+    let camera = camera_for(&spec.camera, plant, supports);
+    Sight::new(camera, spec.radius, plant, supports.shapes(), None, &leaves)
+}
+
+fn length3(run: &[DVec3]) -> f64 {
+    run.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
+
+/// The paths a pen draws of the scene on the page, by id.
+fn paths(scene: &Scene) -> Vec<(String, BezPath)> {
+    let mut out = Vec::new();
+    for layer in &scene.layers {
+        layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+            if p.style.is_drawn() {
+                out.push((p.id.clone(), t * p.path.clone()));
+            }
+        });
+    }
+    out
+}
+
+fn pen_length(paths: &[(String, BezPath)]) -> f64 {
+    paths
+        .iter()
+        .flat_map(|(_, p)| p.segments())
+        .map(|s| s.arclen(1e-6))
+        .sum()
+}
+
+#[test]
+fn behind_its_pole_the_stem_is_hidden_and_in_front_it_hides_the_pole() {
+    // The default pole: radius 6 at x = 20, z = 0, 400 tall, seen from the
+    // front (orthographic along −z, one picture unit a millimetre).
+    let (spec, plant, supports) = grown("leaves = 0\ncotyledons = 0\n");
+    assert!(plant.stems[0].twined.iter().any(|t| *t), "the stem wraps");
+    let sight = sight(&spec, &plant, &supports);
+    let (mut seen, mut all, mut in_front) = (0.0, 0.0, 0);
+    for line in sight.lines().iter().filter(|l| l.part == Part::Stem) {
+        all += length3(&line.points);
+        for run in sight.visible(line, 0.2, 1e-5) {
+            seen += length3(&run);
+            for p in run {
+                let dx = p.x - 20.0;
+                if dx.abs() < 6.0 - 0.05 && p.y > 0.05 && p.y < 400.0 - 0.05 {
+                    // Seen over the pole: it must lie in front of it, up
+                    // to the hiding cylinder's inset and facets (0.07 mm),
+                    // where the stem touches the pole.
+                    let front = (36.0 - dx * dx).sqrt();
+                    assert!(p.z > front - 0.1, "{p} is behind the pole yet drawn");
+                    in_front += 1;
+                }
+            }
+        }
+    }
+    assert!(in_front > 0, "the stem passes in front of the pole");
+    assert!(
+        seen < 0.9 * all,
+        "the stem is hidden behind the pole: {seen} of {all}"
+    );
+    // And where it passes in front, the pole's contours are cut.
+    let (mut seen, mut all) = (0.0, 0.0);
+    for line in sight
+        .lines()
+        .iter()
+        .filter(|l| l.part == Part::Supports && !l.closed)
+    {
+        all += length3(&line.points);
+        seen += sight
+            .visible(line, 0.2, 1e-5)
+            .iter()
+            .map(|r| length3(r))
+            .sum::<f64>();
+    }
+    assert!(
+        seen < all - 10.0,
+        "the stem hides the pole: {seen} of {all}"
+    );
+}
+
+#[test]
+fn a_leaf_hides_what_lies_behind_it() {
+    // A big leaf on a short vine: somewhere a stem or pole line runs
+    // behind a blade, so hiding only by the stem and pole shows more.
+    let table = "leaf_size = 30\ninternodes = 4\n";
+    let (spec, plant, supports) = grown(table);
+    let bare = VineSpec {
+        leaves: 0,
+        cotyledons: 0,
+        ..spec.clone()
+    };
+    let with = sight(&spec, &plant, &supports);
+    let mut plant_bare = plant.clone();
+    plant_bare.leaves.clear();
+    let without = sight(&bare, &plant_bare, &supports);
+    let seen = |s: &Sight| -> f64 {
+        s.lines()
+            .iter()
+            .filter(|l| l.part != Part::Leaves)
+            .flat_map(|l| s.visible(l, 0.2, 1e-5))
+            .map(|r| length3(&r))
+            .sum()
+    };
+    assert!(seen(&with) < seen(&without) - 1.0);
+}
+
+#[test]
+fn the_same_vine_in_two_layers_lines_up() {
+    let whole = scene("id = \"ivy\"\n");
+    let text = "version = 1\nseed = 5\npage = { size = \"A5\", margin = 10 }\n\
+        [[layers]]\nname = \"l\"\n[[layers.vine]]\nid = \"ivy\"\ndraw = [\"stem\"]\n\
+        [[layers]]\nname = \"m\"\n[[layers.vine]]\nid = \"ivy\"\ndraw = [\"leaves\", \"supports\"]\n";
+    let split =
+        crate::project::build_scene(&SceneSpec::parse(text, Format::Toml).unwrap()).unwrap();
+    let stems = |s: &Scene| -> Vec<BezPath> {
+        paths(s)
+            .into_iter()
+            .filter(|(id, _)| id.contains(".stem-"))
+            .map(|(_, p)| p)
+            .collect()
+    };
+    assert!(!stems(&whole).is_empty());
+    assert_eq!(stems(&whole), stems(&split));
+    let whole_len = pen_length(&paths(&whole));
+    let split_len = pen_length(&paths(&split));
+    assert!((whole_len - split_len).abs() < 1e-6 * whole_len);
+}
+
+#[test]
+fn a_vine_hides_what_lies_behind_it_in_a_composition() {
+    // Horizontal lines every 2 mm across the page, on a layer behind a
+    // vine drawn whole (which gives its mask) and behind one drawing its
+    // stem alone (which gives none).
+    let text = |draw: &str| {
+        let lines: Vec<String> = (0..95)
+            .map(|k| format!("M 0 {y} L 128 {y}", y = 2 * k + 1))
+            .collect();
+        format!(
+            "version = 1\nseed = 5\npage = {{ size = \"A5\", margin = 10 }}\n\
+             [plot.occlude]\n\
+             [[layers]]\nname = \"vine\"\n[[layers.vine]]\nid = \"ivy\"\n{draw}\
+             [[layers]]\nname = \"back\"\n[[layers.paths]]\nd = \"{}\"\n",
+            lines.join(" ")
+        )
+    };
+    // What the pens draw of the lines behind, and the area of the mask.
+    let drawn = |draw: &str| -> (f64, f64) {
+        let spec = SceneSpec::parse(&text(draw), Format::Toml).unwrap();
+        let behind: Vec<(String, BezPath)> = paths(&crate::project::render(&spec).unwrap().scene)
+            .into_iter()
+            .filter(|(id, _)| id.starts_with("back"))
+            .collect();
+        // The mask as the vine gives it, before hidden-line removal.
+        let scene = crate::project::build_scene(&spec).unwrap();
+        let mut area = 0.0;
+        for layer in &scene.layers {
+            layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+                if p.id.ends_with(".mask") {
+                    area += (t * p.path.clone()).area().abs();
+                }
+            });
+        }
+        (pen_length(&behind), area)
+    };
+    let full = 95.0 * 128.0;
+    let (whole, area) = drawn("");
+    // Lines 2 mm apart lose about half the mask's area in length (less
+    // where a thin leaf slips between two lines).
+    assert!(area > 300.0, "{area}");
+    let hidden = full - whole;
+    assert!(
+        (hidden - area / 2.0).abs() < 0.2 * area / 2.0,
+        "{hidden} mm hidden, mask {area} mm²"
+    );
+    let (stem_only, none) = drawn("draw = [\"stem\"]\n");
+    assert_eq!(none, 0.0);
+    assert!(
+        (stem_only - full).abs() < 1e-6 * full,
+        "{stem_only} of {full}"
+    );
+}
+
+#[test]
+fn a_vine_is_the_same_for_the_same_seed() {
+    let a = scene("");
+    assert_eq!(paths(&a), paths(&scene("")));
+    let text = test_scene::text("vine", "");
+    let other = text.replace("seed = 5", "seed = 6");
+    let b = crate::project::build_scene(&SceneSpec::parse(&other, Format::Toml).unwrap()).unwrap();
+    assert_ne!(paths(&a), paths(&b));
+}
+
+#[test]
+fn the_drawing_fits_its_box() {
+    let s = scene("fit = [10, 20, 90, 120]\n");
+    let b = paths(&s)
+        .iter()
+        .map(|(_, p)| p.bounding_box())
+        .reduce(|a, b| a.union(b))
+        .unwrap();
+    assert!(b.x0 >= 10.0 - 1e-6 && b.x1 <= 90.0 + 1e-6, "{b:?}");
+    assert!(b.y0 >= 20.0 - 1e-6 && b.y1 <= 120.0 + 1e-6, "{b:?}");
+    assert!(b.height() > 99.0, "tall drawings fill the height: {b:?}");
+}
+
+#[test]
+fn the_model_holds_stems_leaves_and_closed_supports() {
+    let text = test_scene::text("vine", "");
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+    let rendered = crate::project::render(&spec).unwrap();
+    assert_eq!(rendered.models.len(), 1);
+    let model = &rendered.models[0];
+    let (_, plant, _) = grown("");
+    let named = |prefix: &str| {
+        model
+            .parts
+            .iter()
+            .filter(|p| p.name.starts_with(prefix))
+            .count()
+    };
+    assert_eq!(named("stem-"), plant.stems.len());
+    assert_eq!(named("leaf-"), plant.leaves.len());
+    assert_eq!(named("support-"), 1);
+    let stem = &model.parts[0];
+    assert_eq!(stem.lines.len(), 1, "the axis as a polyline");
+    let support = model.parts.iter().find(|p| p.name == "support-0").unwrap();
+    let mesh = TriMesh {
+        vertices: support
+            .vertices
+            .iter()
+            .map(|v| DVec3::from_array(*v))
+            .collect(),
+        triangles: support.faces.iter().map(|f| [f[0], f[1], f[2]]).collect(),
+    };
+    mesh.check_closed("support").unwrap();
+    // Leaves are the thesis' quads: a square of half-diagonal γ = 12.
+    let leaf = model.parts.iter().find(|p| p.name == "leaf-0").unwrap();
+    let v: Vec<DVec3> = leaf
+        .vertices
+        .iter()
+        .map(|v| DVec3::from_array(*v))
+        .collect();
+    assert!((v[0].distance(v[2]) - 24.0).abs() < 1e-9);
+    assert!((v[1].distance(v[3]) - 24.0).abs() < 1e-9);
+    // Only the parts a table draws are exported.
+    let text = test_scene::text("vine", "draw = [\"supports\"]\n");
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+    let rendered = crate::project::render(&spec).unwrap();
+    assert_eq!(rendered.models[0].parts.len(), 1);
+}
+
+#[test]
+fn bad_tables_are_refused_with_the_field() {
+    for (table, field) in [
+        ("internode = 0\n", "vine[0].internode"),
+        ("angle = 90\n", "vine[0].angle"),
+        ("leaves = 3\n", "vine[0].leaves"),
+        ("draw = []\n", "vine[0].draw"),
+        (
+            "supports = [{ kind = \"pole\", from = [0, 0, 0], to = [0, 0, 0], radius = 5 }]\n",
+            "vine[0].supports[0].to",
+        ),
+        (
+            "supports = [{ kind = \"pole\", from = [0, 0, 0], to = [0, 9, 0], radius = 0 }]\n",
+            "vine[0].supports[0].radius",
+        ),
+        (
+            "supports = [{ kind = \"box\", min = [0, 0, 0], max = [5, 0, 5] }]\n",
+            "vine[0].supports[0].max",
+        ),
+        (
+            "camera = { eye = [0, 100, 0], target = [0, 0, 0] }\n",
+            "vine[0].camera.up",
+        ),
+        (
+            "camera = { eye = [0, 0, 100], target = [0, 0, 0], perspective = 180 }\n",
+            "vine[0].camera.perspective",
+        ),
+        ("fit = [10, 10, 5, 50]\n", "vine[0].fit"),
+        ("roots = []\n", "vine[0].roots"),
+        // A seed inside the default pole.
+        ("roots = [[0, 0, 0], [20, 0, 0]]\n", "vine[0].roots[1]"),
+    ] {
+        let e = error(table);
+        assert!(e.contains(field), "{table}: {e}");
+    }
+}
