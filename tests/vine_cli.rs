@@ -97,7 +97,7 @@ fn the_obj_is_read_back_as_stems_leaves_and_supports() {
             (Some(4), Some(2))
         );
     }
-    // The pole: radius 6 from y = 0 to 330 (mm, y up), watertight.
+    // The pole: radius 6 from y = 0 to 560 (mm, y up), watertight.
     let pole = &parts["vine.vine.support-0"];
     assert_eq!(pole["watertight"], true);
     let b: Vec<f64> = pole["box"]
@@ -107,12 +107,12 @@ fn the_obj_is_read_back_as_stems_leaves_and_supports() {
         .map(|v| v.as_f64().unwrap())
         .collect();
     assert!(
-        (b[1] - 0.0).abs() < 1e-6 && (b[4] - 330.0).abs() < 1e-6,
+        (b[1] - 0.0).abs() < 1e-6 && (b[4] - 560.0).abs() < 1e-6,
         "{b:?}"
     );
     assert!((b[3] - b[0] - 12.0).abs() < 0.1, "{b:?}");
     let volume = pole["volume"].as_f64().unwrap();
-    assert!((volume / (std::f64::consts::PI * 36.0 * 330.0) - 1.0).abs() < 0.02);
+    assert!((volume / (std::f64::consts::PI * 36.0 * 560.0) - 1.0).abs() < 0.02);
 }
 
 #[test]

@@ -219,6 +219,59 @@ fn a_vine_hides_what_lies_behind_it_in_a_composition() {
 }
 
 #[test]
+fn a_vine_along_a_guide_winds_over_and_under_its_rod_and_ends_with_it() {
+    // A straight guide across the page at y = 100, from x = 10 to 118.
+    let s = scene(
+        "internode = 14\nradius = 0.6\nleaf_size = 4\nangle = 30\ninternodes = 30\n\
+         guide = { points = [[10, 100], [118, 100]], smooth = false, radius = 1 }\n",
+    );
+    let all = paths(&s);
+    let of = |part: &str| -> Vec<&BezPath> {
+        all.iter()
+            .filter(|(id, _)| id.contains(part))
+            .map(|(_, p)| p)
+            .collect()
+    };
+    let points = |paths: &[&BezPath]| -> Vec<kurbo::Point> {
+        paths
+            .iter()
+            .flat_map(|p| p.elements().iter().filter_map(|e| e.end_point()))
+            .collect()
+    };
+    let runs = |paths: &[&BezPath]| -> usize {
+        paths
+            .iter()
+            .flat_map(|p| p.elements())
+            .filter(|e| matches!(e, kurbo::PathEl::MoveTo(_)))
+            .count()
+    };
+    let (stems, rod) = (of(".stem-"), of(".support-"));
+    assert!(!stems.is_empty() && rod.len() == 1);
+    // The rod lies on the guide, as long as it.
+    for p in points(&rod) {
+        assert!(
+            (p.y - 100.0).abs() < 1.0 + 1e-6 && (10.0 - 1e-6..=118.0 + 1e-6).contains(&p.x),
+            "{p:?}"
+        );
+    }
+    // The stem hugs it, sprouting at its start and cut at its end (the
+    // rounded tip is r long); the free base may wander a little.
+    for p in points(&stems) {
+        assert!((p.y - 100.0).abs() < 10.0, "{p:?}");
+        assert!((5.0..=118.0 + 0.6 + 1e-6).contains(&p.x), "{p:?}");
+    }
+    let on_rod = points(&stems)
+        .iter()
+        .filter(|p| (p.y - 100.0).abs() < 1.0 + 2.0 * 0.6 + 0.01)
+        .count();
+    assert!(on_rod * 2 > points(&stems).len(), "{on_rod}");
+    // Over and under: the stem hides the rod where it passes in front, the
+    // rod hides the stem where it passes behind, many times along it.
+    assert!(runs(&rod) > 2 * 5, "rod in {} pieces", runs(&rod));
+    assert!(runs(&stems) > 2 * 5, "stems in {} pieces", runs(&stems));
+}
+
+#[test]
 fn a_vine_is_the_same_for_the_same_seed() {
     let a = scene("");
     assert_eq!(paths(&a), paths(&scene("")));
