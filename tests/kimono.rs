@@ -1795,3 +1795,126 @@ fn partly_hidden_fills_keep_the_colour_of_their_visible_area() {
         assert!(!l.is_plotted() || !p.style.fill_only, "{}", p.id);
     });
 }
+
+// ------------------------------------------------------------- clouds
+
+/// Corners of `path` that turn by more than `degrees` (between one
+/// segment's end tangent and the next one's start tangent, the closing
+/// join included), and the path's length.
+fn sharp_corners(path: &BezPath, degrees: f64) -> (usize, f64) {
+    let mut corners = 0;
+    let limit = degrees.to_radians();
+    let turn = |a: Vec2, b: Vec2| a.cross(b).atan2(a.dot(b)).abs();
+    let mut length = 0.0;
+    for sub in subpaths(path) {
+        let segs: Vec<kurbo::PathSeg> = sub.segments().collect();
+        length += segs
+            .iter()
+            .map(|s| kurbo::ParamCurveArclen::arclen(s, 1e-4))
+            .sum::<f64>();
+        let ends: Vec<(Vec2, Vec2)> = segs.iter().filter_map(tangents).collect();
+        for (k, (_, out)) in ends.iter().enumerate() {
+            let next = ends[(k + 1) % ends.len()].0;
+            if turn(*out, next) > limit {
+                corners += 1;
+            }
+        }
+    }
+    (corners, length)
+}
+
+/// A segment's start and end tangent directions (`None` for a point).
+fn tangents(seg: &kurbo::PathSeg) -> Option<(Vec2, Vec2)> {
+    let n = 64;
+    let at = |t: f64| seg.eval(t);
+    let start = (1..=n)
+        .map(|k| at(f64::from(k) / f64::from(n)) - at(0.0))
+        .find(|v| v.hypot() > 1e-9)?;
+    let end = (0..n)
+        .rev()
+        .map(|k| at(1.0) - at(f64::from(k) / f64::from(n)))
+        .find(|v| v.hypot() > 1e-9)?;
+    Some((start, end))
+}
+
+/// The closed subpaths of a path (a mask's islands and holes).
+fn subpaths(path: &BezPath) -> Vec<BezPath> {
+    let mut out: Vec<BezPath> = Vec::new();
+    for el in path.elements() {
+        if matches!(el, PathEl::MoveTo(_)) {
+            out.push(BezPath::new());
+        }
+        if let Some(sub) = out.last_mut() {
+            sub.push(*el);
+        }
+    }
+    out
+}
+
+/// The background masks of a scene before the plot stages, by id.
+fn masks(scene: &Scene) -> Vec<(String, BezPath)> {
+    page_paths(scene)
+        .into_iter()
+        .filter(|p| p.id.ends_with(".background.mask"))
+        .map(|p| (p.id, p.path))
+        .collect()
+}
+
+#[test]
+fn kimono_masks_are_clouds_not_balloons() {
+    let mut seen = 0;
+    for t in templates::ALL
+        .iter()
+        .filter(|t| t.name.starts_with("kimono-"))
+    {
+        let scene = build(&t.spec().unwrap());
+        for (id, mask) in masks(&scene) {
+            let (corners, length) = sharp_corners(&mask, 40.0);
+            let per_100 = 100.0 * corners as f64 / length;
+            assert!(
+                per_100 <= 0.5,
+                "{}: {id} has {corners} corners sharper than 40° in {length:.0} mm",
+                t.name
+            );
+            seen += 1;
+        }
+    }
+    assert!(seen >= 6, "{seen} masks");
+}
+
+#[test]
+fn cloud_0_keeps_the_sources_union_of_stamps() {
+    // The same background with its clouds and as the source draws it: the
+    // union of circles has a sharp corner wherever two stamps meet, the
+    // cloud none; the cloud holds the union and reaches at most its radius
+    // into the notches.
+    let kimono_1 = templates::ALL
+        .iter()
+        .find(|t| t.name == "kimono-1")
+        .unwrap();
+    let text = kimono_1.text;
+    let balloons = text.replace("[layers.background]\n", "[layers.background]\ncloud = 0\n");
+    assert_ne!(balloons, text);
+    let cloud = &masks(&build(&parse(text)))[0].1;
+    let union = &masks(&build(&parse(&balloons)))[0].1;
+    let (sharp, length) = sharp_corners(union, 40.0);
+    assert!(
+        100.0 * sharp as f64 / length > 3.0,
+        "{sharp} corners in {length:.0} mm"
+    );
+    assert_eq!(sharp_corners(cloud, 40.0).0, 0);
+    let (c, u) = (
+        Region::new(cloud.clone(), FillRule::NonZero).unwrap(),
+        Region::new(union.clone(), FillRule::NonZero).unwrap(),
+    );
+    assert!(
+        u.difference(&c).area() < 1e-3 * u.area(),
+        "the cloud holds the union"
+    );
+    let grown = offset(&u, 0.25 * 17.0 + 0.05, 0.01).unwrap();
+    assert!(
+        c.difference(&grown).area() < 1e-3 * c.area(),
+        "and stays near it"
+    );
+    assert!(c.area() > u.area() * 1.01, "the notches are filled");
+}

@@ -473,6 +473,13 @@ pub struct BackgroundSpec {
     /// Stamp height in mm; default: from the stamp's proportions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stamp_height: Option<f64>,
+    /// Rounds the union of stamps into clouds (kumo), mm (0–500; default
+    /// half the stamp width): the mask is grown by this much, then shrunk
+    /// by as much (a closing), which fills the notches between stamps with
+    /// arcs of this radius and joins stamps closer than twice it. `0`
+    /// keeps the source's union of stamps, a string of balloons.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cloud: Option<f64>,
     /// Pattern 1–5 composited into the mask (SPEC §1.6), or 0: none, the
     /// mask's outline alone (for a later layer to fill).
     pub pattern: u8,
@@ -600,6 +607,11 @@ impl LeavesSpec {
 }
 
 impl BackgroundSpec {
+    /// The radius (mm) of the closing that rounds the mask into clouds.
+    pub fn cloud_radius(&self) -> f64 {
+        self.cloud.unwrap_or(0.25 * self.stamp_width)
+    }
+
     /// The rule of the mask trees.
     pub fn mask_rule(&self) -> TreeRule {
         self.rule.unwrap_or(if self.composite <= 2 {
@@ -637,6 +649,9 @@ impl Family for BackgroundSpec {
         size(&format!("{f}.stamp_width"), self.stamp_width)?;
         if let Some(h) = self.stamp_height {
             size(&format!("{f}.stamp_height"), h)?;
+        }
+        if let Some(c) = self.cloud {
+            range(&format!("{f}.cloud"), c, 0.0, 500.0)?;
         }
         range(&format!("{f}.pattern"), self.pattern, 0, 5)?;
         let (min, max) = match self.pattern {

@@ -5,7 +5,10 @@
 //! and grow both ways from it, as in the source's figures: up (stopped by
 //! the upper region line) and down (stopped by the lower one). A stamp —
 //! a circle unless another motif is named — is put on every vertex; the
-//! mask is the union of the stamps, one region. The composite modes:
+//! mask is the union of the stamps, one region, rounded into clouds by a
+//! closing of radius `cloud` (beyond the source, whose union of circles
+//! reads as a string of balloons: every notch between two stamps is a
+//! sharp corner). The composite modes:
 //!
 //! 1. the trees grow freely between the region lines;
 //! 2. as 1, and a vertex outside every given circle also stops growth (a
@@ -39,6 +42,7 @@ use kurbo::{Affine, BezPath, Point, Rect, Shape};
 use super::placements;
 use crate::error::Result;
 use crate::geom::clip::StrokeClipper;
+use crate::geom::offset::closing;
 use crate::geom::region::{FillRule, Region};
 use crate::geom::TOLERANCE;
 use crate::motif::flora::Drawing;
@@ -75,7 +79,8 @@ pub(crate) fn background(
         .iter()
         .filter_map(|m| Region::new(*m * stamp.outline.clone(), FillRule::NonZero).ok())
         .collect();
-    let mask = Region::union_all(&regions);
+    // Rounded into clouds: the notches between stamps become arcs.
+    let mask = closing(&Region::union_all(&regions), bg.cloud_radius(), TOLERANCE)?;
     if mask.is_empty() {
         return Ok(group);
     }
