@@ -36,7 +36,7 @@ pub use lsystem::{
 pub use params::{ResolvedTreeParams, TreeParams};
 pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
 pub use region::{CircleSpec, HoleSpec, RegionSpec};
-pub use trees::{Growth, LimbSpec, LimbStyle, TreeOverride, TreeRule, TreeSetSpec};
+pub use trees::{Growth, LimbSpec, LimbStyle, Rhythm, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
 pub use vine::{CameraPreset, CameraSpec, GuideSpec, Part, SupportSpec, VineSpec};
 pub use voronoi::{

@@ -124,7 +124,8 @@ pub struct TreeSetSpec {
     pub id: Option<String>,
     /// Which of Tree1–Tree8.
     pub rule: TreeRule,
-    /// Number of trees (0–10,000), at even arc-length spacing.
+    /// Number of trees (0–10,000), at even arc-length spacing unless
+    /// `rhythm` says otherwise.
     #[serde(default = "default_count")]
     pub count: u32,
     /// The centre line (中心線) of this set: ≥ 2 control points in mm.
@@ -139,6 +140,10 @@ pub struct TreeSetSpec {
     /// Rule parameters.
     #[serde(default)]
     pub params: TreeParams,
+    /// How size, spacing and turn vary along the centre line (default:
+    /// all alike, evenly spaced).
+    #[serde(default, skip_serializing_if = "Rhythm::is_even")]
+    pub rhythm: Rhythm,
     /// Per-tree adjustments by id (`tree-0`, `tree-1`, …).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub overrides: Vec<TreeOverride>,
@@ -152,6 +157,102 @@ pub struct TreeSetSpec {
 
 fn default_count() -> u32 {
     1
+}
+
+/// The rhythm of a tree set along its centre line (beyond the source,
+/// whose trees stand evenly in one size; its §7.2.2 asks for composition
+/// without placing every tree by hand): a leading tree, a quieter tail,
+/// gaps that shrink or grow, trees that fan out, and rests.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rhythm {
+    /// Scale of the first tree, the lead (0.05–20, default 1).
+    #[serde(default = "unit")]
+    pub lead: f64,
+    /// Scale of the last tree (0.05–20, default 1); the trees between
+    /// change in even steps of ratio from `lead` to it.
+    #[serde(default = "unit")]
+    pub tail: f64,
+    /// Each gap between neighbours is this times the one before (0.1–10,
+    /// default 1: even); below 1 the trees crowd towards the tail.
+    #[serde(default = "unit")]
+    pub spacing: f64,
+    /// Degrees (−90–90, default 0) by which the last tree is turned
+    /// further than the first, clockwise; the trees between fan out
+    /// evenly, the middle one keeping the set's `rotate`.
+    #[serde(default)]
+    pub turn: f64,
+    /// Rests: after these trees (by number, from 0) the gap is twice as
+    /// wide, the place of one more tree left empty.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rests: Vec<u32>,
+}
+
+fn unit() -> f64 {
+    1.0
+}
+
+impl Default for Rhythm {
+    fn default() -> Self {
+        Rhythm {
+            lead: 1.0,
+            tail: 1.0,
+            spacing: 1.0,
+            turn: 0.0,
+            rests: Vec::new(),
+        }
+    }
+}
+
+impl Rhythm {
+    /// All trees alike and evenly spaced.
+    pub fn is_even(&self) -> bool {
+        *self == Rhythm::default()
+    }
+
+    fn check(&self, f: &str, count: u32) -> Result<()> {
+        range(&format!("{f}.lead"), self.lead, 0.05, 20.0)?;
+        range(&format!("{f}.tail"), self.tail, 0.05, 20.0)?;
+        range(&format!("{f}.spacing"), self.spacing, 0.1, 10.0)?;
+        range(&format!("{f}.turn"), self.turn, -90.0, 90.0)?;
+        for (i, r) in self.rests.iter().enumerate() {
+            if *r + 1 >= count.max(1) {
+                return Err(Error::invalid(
+                    format!("{f}.rests[{i}]"),
+                    format!(
+                        "a rest comes after a tree that has one after it: 0 … {}, got {r}",
+                        count.saturating_sub(2)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Where tree `i` of `n` stands, as a fraction of the centre line,
+    /// its scale and its extra turn in degrees.
+    pub fn place(&self, i: usize, n: usize) -> (f64, f64, f64) {
+        let t = if n > 1 {
+            i as f64 / (n - 1) as f64
+        } else {
+            0.0
+        };
+        let scale = self.lead * (self.tail / self.lead).powf(t);
+        let turn = self.turn * (t - 0.5);
+        // A half gap before the first tree and after the last; gap j (after
+        // tree j) is `spacing^j`, twice that where a rest follows tree j.
+        let gap = |j: usize| self.spacing.powi(j as i32);
+        let mut s = 0.5 * gap(0);
+        let mut at = Vec::with_capacity(n);
+        at.push(s);
+        for j in 0..n.saturating_sub(1) {
+            let rest = self.rests.contains(&(j as u32));
+            s += if rest { 2.0 * gap(j) } else { gap(j) };
+            at.push(s);
+        }
+        let total = s + 0.5 * gap(n.saturating_sub(2));
+        (at[i] / total, scale, turn)
+    }
 }
 
 /// Final adjustment of one tree (SPEC §1.4).
@@ -180,6 +281,7 @@ impl Family for TreeSetSpec {
         points(&format!("{f}.centre"), &self.centre, 2)?;
         range(&format!("{f}.rotate"), self.rotate, -360.0, 360.0)?;
         self.params.check(&format!("{f}.params"))?;
+        self.rhythm.check(&format!("{f}.rhythm"), self.count)?;
         let mut seen = BTreeSet::new();
         for (j, o) in self.overrides.iter().enumerate() {
             let of = format!("{f}.overrides[{j}]");

@@ -282,6 +282,7 @@ fn stamp_sites(bg: &BackgroundSpec, group_id: &str, cx: &mut Context<'_>) -> Res
         growth: bg.growth,
         rotate: 0.0,
         params: bg.params.clone(),
+        rhythm: Default::default(),
         overrides: Vec::new(),
         flowers: None,
         leaves: LeavesSpec::default(),

@@ -58,7 +58,8 @@ pub(super) fn placements(set: &TreeSetSpec) -> Vec<Placement> {
         .into_iter()
         .enumerate()
         .map(|(i, o)| {
-            let s = walker.length() * (i as f64 + 0.5) / n as f64;
+            let (along, size, fan) = set.rhythm.place(i, n);
+            let s = walker.length() * along;
             let tangent = walker.tangent_at(s);
             let base = match set.growth {
                 Orientation::Perpendicular => {
@@ -71,13 +72,13 @@ pub(super) fn placements(set: &TreeSetSpec) -> Vec<Placement> {
                 }
                 Orientation::Parallel => tangent,
             };
-            let rotate = set.rotate + o.and_then(|o| o.rotate).unwrap_or(0.0);
+            let rotate = set.rotate + fan + o.and_then(|o| o.rotate).unwrap_or(0.0);
             Placement {
                 root: o
                     .and_then(|o| o.root)
                     .map_or_else(|| walker.point_at(s), |[x, y]| Point::new(x, y)),
                 direction: turn(base, rotate),
-                scale: o.and_then(|o| o.scale).unwrap_or(1.0),
+                scale: size * o.and_then(|o| o.scale).unwrap_or(1.0),
             }
         })
         .collect()

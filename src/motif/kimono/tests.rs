@@ -5,7 +5,9 @@ use kurbo::Point;
 use super::*;
 use crate::motif::flora::Library;
 use crate::motif::Flow;
-use crate::spec::{AdjustSpec, Format, Points, SceneSpec, TreeOverride, TreeParams, TreeRule};
+use crate::spec::{
+    AdjustSpec, Format, Points, Rhythm, SceneSpec, TreeOverride, TreeParams, TreeRule,
+};
 
 /// Runs `f` on layer `l` (at `depth`, default limbs) of a scene with seed 9
 /// whose adjustments are `adjust`; every adjustment must be used.
@@ -42,6 +44,7 @@ fn set(centre: Points, count: u32) -> TreeSetSpec {
             jitter_length: Some(0.0),
             ..TreeParams::default()
         },
+        rhythm: Default::default(),
         overrides: Vec::new(),
         flowers: None,
         leaves: Default::default(),
@@ -432,4 +435,57 @@ motifs = [{ svg = "p4" }, { svg = "missing.svg" }]
     );
     let e = grown(&set, &polygons(), 0, &[]).unwrap_err().to_string();
     assert!(e.contains("missing.svg"), "{e}");
+}
+
+#[test]
+fn a_rhythm_leads_with_a_large_tree_crowds_towards_a_quiet_tail_and_rests() {
+    let mut s = set(vec![[0.0, 100.0], [100.0, 100.0]], 5);
+    s.rhythm = Rhythm {
+        lead: 1.5,
+        tail: 0.6,
+        spacing: 0.8,
+        turn: 20.0,
+        rests: vec![2],
+    };
+    let p = placements(&s);
+    // Sizes fall in even ratios from the lead to the tail.
+    let scales: Vec<f64> = p.iter().map(|p| p.scale).collect();
+    assert!((scales[0] - 1.5).abs() < 1e-12 && (scales[4] - 0.6).abs() < 1e-12);
+    for w in scales.windows(3) {
+        assert!((w[1] / w[0] - w[2] / w[1]).abs() < 1e-12, "{scales:?}");
+    }
+    // Gaps shrink by 0.8 each, and the rest after tree 2 is one more gap.
+    let x: Vec<f64> = p.iter().map(|p| p.root.x).collect();
+    let gaps: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+    // (Points on the line are found within the flattening tolerance.)
+    let tol = 5.0 * crate::geom::TOLERANCE;
+    assert!((gaps[1] - 0.8 * gaps[0]).abs() < tol, "{gaps:?}");
+    assert!((gaps[2] - 2.0 * 0.8 * gaps[1]).abs() < tol, "{gaps:?}");
+    assert!((gaps[3] - 0.8 * gaps[2] / 2.0).abs() < tol, "{gaps:?}");
+    // Half a gap before the first tree and after the last.
+    assert!((x[0] - 0.5 * gaps[0]).abs() < tol && (100.0 - x[4] - 0.5 * gaps[3]).abs() < tol);
+    // The trees fan out by 20° from first to last, the middle one upright.
+    let angle = |d: Vec2| d.y.atan2(d.x).to_degrees() + 90.0;
+    assert!((angle(p[0].direction) + 10.0).abs() < 1e-9);
+    assert!(angle(p[2].direction).abs() < 1e-9);
+    assert!((angle(p[4].direction) - 10.0).abs() < 1e-9);
+    // The default rhythm is the even one.
+    s.rhythm = Rhythm::default();
+    let even: Vec<f64> = placements(&s).iter().map(|p| p.root.x).collect();
+    for (x, want) in even.iter().zip([10.0, 30.0, 50.0, 70.0, 90.0]) {
+        assert!((x - want).abs() < tol, "{even:?}");
+    }
+}
+
+#[test]
+fn a_rest_after_the_last_tree_is_refused() {
+    let text = "version = 1\n[[layers]]\nname = \"l\"\n[[layers.trees]]\nrule = \"tree2\"\n\
+                count = 3\ncentre = [[0, 100], [100, 100]]\nrhythm = { rests = [2] }\n";
+    let e = SceneSpec::parse(text, Format::Toml)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("layers[0].trees[0].rhythm.rests[0]") && e.contains("0 … 1"),
+        "{e}"
+    );
 }
