@@ -224,6 +224,7 @@ fn build(
             content,
         });
     }
+    cx.adjust().apply_to_groups(&mut layers)?;
     let (notes, models) = cx.finish()?;
     let mut pens: Vec<Pen> = spec
         .pens

@@ -568,7 +568,7 @@ id = "plum"
 rule = "tree2"
 count = 2
 centre = [[40, 200], [150, 200]]
-params = {{ generations = 3, trunk = 20 }}
+params = {{ generations = 4, trunk = 18 }}
 [layers.trees.flowers]
 motifs = [{{ svg = "five-petal.svg" }}, {{ svg = "fan.svg" }}]
 width = 8
@@ -1917,4 +1917,78 @@ fn cloud_0_keeps_the_sources_union_of_stamps() {
         "and stays near it"
     );
     assert!(c.area() > u.area() * 1.01, "the notches are filled");
+}
+
+// ------------------------------------------------------------- groups
+
+/// Two sets in the front layer and one behind, each tree with flowers.
+fn grouped_scene(adjust: &str) -> String {
+    let set = |id: &str, x: f64| {
+        format!(
+            "[[layers.trees]]\nid = \"{id}\"\nrule = \"tree2\"\ncount = 3\n\
+             centre = [[{x}, 180], [{}, 180]]\nparams = {{ generations = 4, trunk = 18 }}\n\
+             flowers = {{ motifs = [\"ume\"], width = 6 }}\n",
+            x + 80.0
+        )
+    };
+    format!(
+        "version = 1\nseed = 4\n[page]\nsize = \"A4\"\norientation = \"landscape\"\n\
+         [[layers]]\nname = \"front\"\n{}{}[[layers]]\nname = \"back\"\n{}{adjust}",
+        set("a", 10.0),
+        set("b", 100.0),
+        set("c", 190.0)
+    )
+}
+
+#[test]
+fn an_adjustment_of_a_set_or_a_layer_moves_every_member_and_nothing_else() {
+    let plain = render(&parse(&grouped_scene("")));
+    // A set moved: every path of it by exactly that much.
+    let moved = render(&parse(&grouped_scene(
+        "[[adjust]]\nid = \"front.a\"\nmove = [12, -5]\n",
+    )));
+    assert_rest_identical(&plain, &moved, &|id| id.starts_with("front.a."));
+    let (before, after) = (by_id(&plain.scene), by_id(&moved.scene));
+    let members = select(&before, |id| id.starts_with("front.a."));
+    assert!(members.len() > 6, "{}", members.len());
+    for (id, path) in &members {
+        let want = Affine::translate((12.0, -5.0)) * path.clone();
+        assert_mapped(&want, &after[id], Affine::IDENTITY, id);
+    }
+    // A layer turned half round: its box keeps its centre, the layer
+    // behind is untouched.
+    let turned = render(&parse(&grouped_scene(
+        "[[adjust]]\nid = \"front\"\nrotate = 180\n",
+    )));
+    assert_rest_identical(&plain, &turned, &|id| id.starts_with("front."));
+    let bounds = |m: &BTreeMap<String, BezPath>| {
+        m.values()
+            .map(|p| p.bounding_box())
+            .reduce(|a, b| a.union(b))
+            .unwrap()
+    };
+    let front = |s: &Scene| select(&by_id(s), |id| id.starts_with("front."));
+    let (a, b) = (bounds(&front(&plain.scene)), bounds(&front(&turned.scene)));
+    assert!((a.center() - b.center()).hypot() < 1e-6, "{a:?} {b:?}");
+    assert!((a.width() - b.width()).abs() < 1e-6 && (a.height() - b.height()).abs() < 1e-6);
+    // Hidden: the set and what it holds are gone, the rest stays.
+    let hidden = render(&parse(&grouped_scene(
+        "[[adjust]]\nid = \"front.b\"\nhide = true\n",
+    )));
+    assert!(by_id(&hidden.scene)
+        .keys()
+        .all(|id| !id.starts_with("front.b.")));
+    assert_rest_identical(&plain, &hidden, &|id| id.starts_with("front.b."));
+}
+
+#[test]
+fn a_group_has_no_motif_to_swap() {
+    let text = grouped_scene("[[adjust]]\nid = \"front.a\"\nmotif = \"ume\"\n");
+    let e = project::build_scene_with_progress(&parse(&text), &Library::new(), &mut |_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("adjust[0].motif") && e.contains("a group"),
+        "{e}"
+    );
 }

@@ -8,9 +8,10 @@
 
 use std::collections::BTreeMap;
 
-use kurbo::{Affine, Point, Vec2};
+use kurbo::{Affine, Point, Rect, Shape, Vec2};
 
 use crate::error::{Error, Result};
+use crate::scene::{Group, Layer, Node};
 use crate::spec::AdjustSpec;
 
 /// The adjustments of a scene, by id, with a record of which were used.
@@ -61,6 +62,74 @@ impl<'a> Adjustments<'a> {
         Ok(self.take(id))
     }
 
+    /// Like [`Adjustments::take_without_motif`], but only an adjustment that
+    /// nothing has taken yet (a tree's group was adjusted as the tree).
+    ///
+    /// # Errors
+    /// When the adjustment asks for a motif.
+    fn take_unused(&mut self, id: &str, what: &str) -> Result<Option<&'a AdjustSpec>> {
+        match self.by_id.get(id) {
+            Some(&i) if !self.used[i] => self.take_without_motif(id, what),
+            _ => Ok(None),
+        }
+    }
+
+    /// Applies the adjustments that name a group of `layers` rather than
+    /// one motif — a layer (`front`), a tree set (`front.plum`), a
+    /// background, any family's table — and that nothing took while the
+    /// scene was built: the whole group moves, turns and scales as one,
+    /// about the centre of what it holds, or is left out (`hide`).
+    /// Several sets adjusted as one are the sets of one layer.
+    ///
+    /// # Errors
+    /// An adjustment of a group that asks for a motif.
+    pub(crate) fn apply_to_groups(&mut self, layers: &mut [Layer]) -> Result<()> {
+        for layer in layers {
+            let id = layer.id.clone();
+            self.group(&mut layer.content, Some(&id), Affine::IDENTITY)?;
+        }
+        Ok(())
+    }
+
+    /// Adjusts `group` (also known as `alias`, a layer's id) if it is
+    /// named, and the groups below it; `outer` maps its parent to the
+    /// scene's coordinates.
+    fn group(&mut self, group: &mut Group, alias: Option<&str>, outer: Affine) -> Result<()> {
+        let named = match alias {
+            Some(alias) => self.take_unused(alias, "a layer")?,
+            None => None,
+        };
+        let named = match named {
+            Some(a) => Some(a),
+            None => self.take_unused(&group.id, "a group")?,
+        };
+        if let Some(a) = named {
+            if a.hide {
+                self.take_parts_of(&group.id);
+                group.children.clear();
+                return Ok(());
+            }
+            let mut bounds: Option<Rect> = None;
+            group.visit_paths(outer, &mut |p, t| {
+                let b = (t * p.path.clone()).bounding_box();
+                bounds = Some(bounds.map_or(b, |r| r.union(b)));
+            });
+            if let Some(b) = bounds {
+                // About its centre in the scene, applied in its parent's
+                // coordinates.
+                group.transform =
+                    outer.inverse() * about(Some(a), b.center()) * outer * group.transform;
+            }
+        }
+        let here = outer * group.transform;
+        for child in &mut group.children {
+            if let Node::Group(g) = child {
+                self.group(g, None, here)?;
+            }
+        }
+        Ok(())
+    }
+
     /// Marks every adjustment of the parts of `id` (ids starting with
     /// `id.`) used: they address something real that is hidden with it.
     pub fn take_parts_of(&mut self, id: &str) {
@@ -94,7 +163,7 @@ impl<'a> Adjustments<'a> {
 
 /// The map of an adjustment about `anchor` (page mm): scale, then turn
 /// clockwise, about the anchor, then move.
-pub(super) fn about(adjust: Option<&AdjustSpec>, anchor: Point) -> Affine {
+pub(crate) fn about(adjust: Option<&AdjustSpec>, anchor: Point) -> Affine {
     let Some(a) = adjust else {
         return Affine::IDENTITY;
     };

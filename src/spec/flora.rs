@@ -535,7 +535,8 @@ pub struct AdjustSpec {
     #[serde(default, rename = "move", skip_serializing_if = "Option::is_none")]
     pub offset: Option<[f64; 2]>,
     /// Turn by this many degrees, clockwise, about its anchor (a tree's
-    /// root, a flower's centre, a leaf's stem end).
+    /// root, a flower's centre, a leaf's stem end, the centre of a group:
+    /// a layer, a set, any family's table).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotate: Option<f64>,
     /// Scale about its anchor (0.01–100).
