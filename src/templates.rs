@@ -86,6 +86,7 @@ pub const ALL: &[Template] = templates![
     "vine-fence",
     "vine-border",
     "kimono-vine",
+    "kimono-egasumi",
 ];
 
 impl Template {

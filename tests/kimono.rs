@@ -1992,3 +1992,58 @@ fn a_group_has_no_motif_to_swap() {
         "{e}"
     );
 }
+
+// ------------------------------------------------------------- mist
+
+#[test]
+fn mist_bands_lie_along_their_line_apart_and_on_the_page() {
+    let t = templates::ALL
+        .iter()
+        .find(|t| t.name == "kimono-egasumi")
+        .unwrap();
+    let spec = t.spec().unwrap();
+    let bg = spec.layers[1].background.as_ref().unwrap();
+    let mist = bg.mist.as_ref().unwrap();
+    let scene = build(&spec);
+    let (_, mask) = masks(&scene)
+        .into_iter()
+        .find(|(id, _)| id == "mist.background.mask")
+        .unwrap();
+    // One island a band: the gaps keep them apart.
+    let region = Region::new(mask.clone(), FillRule::NonZero).unwrap();
+    assert_eq!(region.components().len(), mist.bands as usize);
+    // Across the line they reach no further than the bands with their
+    // steps stacked on it; along it, no further than its ends.
+    let (h, gap) = (mist.height, mist.gap.unwrap());
+    let pitch = h + 0.4 * h * f64::from(mist.steps) + gap;
+    let reach = 0.5 * f64::from(mist.bands) * pitch + h;
+    let ys: Vec<f64> = bg.centre.iter().map(|p| p[1]).collect();
+    let (lo, hi) = (
+        ys.iter().copied().fold(f64::INFINITY, f64::min),
+        ys.iter().copied().fold(0.0, f64::max),
+    );
+    let b = mask.bounding_box();
+    assert!(b.y0 > lo - reach - 10.0 && b.y1 < hi + reach, "{b:?}");
+    assert!(
+        b.x0 >= bg.centre[0][0] - h && b.x1 <= bg.centre[2][0] + h,
+        "{b:?}"
+    );
+    let page = scene.page.drawable();
+    assert!(
+        b.x0 >= 0.0 && b.y0 >= 0.0 && b.x1 <= page.width() && b.y1 <= page.height(),
+        "{b:?}"
+    );
+    // The pattern fills the bands, and the outline is a cloud too.
+    assert!(
+        page_paths(&scene)
+            .iter()
+            .filter(|p| p.id.starts_with("mist.background.tile-"))
+            .count()
+            > 50
+    );
+    let (corners, length) = sharp_corners(&mask, 40.0);
+    assert!(
+        100.0 * corners as f64 / length <= 0.5,
+        "{corners} in {length:.0} mm"
+    );
+}

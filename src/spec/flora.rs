@@ -442,8 +442,14 @@ impl LeavesSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BackgroundSpec {
-    /// Mask generation mode, 1–4 (see SPEC §1.6).
+    /// Mask generation mode, 1–4 (see SPEC §1.6; default 1).
+    #[serde(default = "default_composite")]
     pub composite: u8,
+    /// Mist bands (egasumi) instead of stamps on hidden trees: the mask is
+    /// made of long bands with rounded ends and stepped edges along the
+    /// centre line.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mist: Option<MistSpec>,
     /// Tree rule of the hidden mask trees; default tree2 for composites
     /// 1 and 2, tree4 (sparser) for 3 and 4.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -507,6 +513,55 @@ pub struct BackgroundSpec {
 
 fn default_mask_count() -> u32 {
     6
+}
+
+fn default_composite() -> u8 {
+    1
+}
+
+/// Mist bands, 霞 egasumi (suyari-gasumi, the long trailing kind of
+/// yūzen): the background's mask as bands that run along its centre line,
+/// stacked across it, each with rounded ends and a stepped upper edge.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MistSpec {
+    /// Bands stacked across the centre line (1–50, default 3).
+    #[serde(default = "default_bands")]
+    pub bands: u32,
+    /// Thickness of a band, mm (0.5–500, default 12).
+    #[serde(default = "default_band_height")]
+    pub height: f64,
+    /// Space between two bands (each with its steps), mm (0–500; default
+    /// half the height).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gap: Option<f64>,
+    /// Steps on a band's upper edge (0–5, default 2): shorter bands
+    /// stacked on it, each 0.4 of a height higher.
+    #[serde(default = "default_steps")]
+    pub steps: u32,
+}
+
+fn default_bands() -> u32 {
+    3
+}
+
+fn default_band_height() -> f64 {
+    12.0
+}
+
+fn default_steps() -> u32 {
+    2
+}
+
+impl MistSpec {
+    fn check(&self, f: &str) -> Result<()> {
+        range(&format!("{f}.bands"), self.bands, 1, 50)?;
+        size(&format!("{f}.height"), self.height)?;
+        if let Some(g) = self.gap {
+            range(&format!("{f}.gap"), g, 0.0, 500.0)?;
+        }
+        range(&format!("{f}.steps"), self.steps, 0, 5)
+    }
 }
 
 fn default_stamp() -> MotifRef {
@@ -630,6 +685,9 @@ impl Family for BackgroundSpec {
 
     fn check(&self, f: &str) -> Result<()> {
         range(&format!("{f}.composite"), self.composite, 1, 4)?;
+        if let Some(m) = &self.mist {
+            m.check(&format!("{f}.mist"))?;
+        }
         range(&format!("{f}.count"), self.count, 0, 1000)?;
         super::validate::points(&format!("{f}.centre"), &self.centre, 2)?;
         self.params.check(&format!("{f}.params"))?;

@@ -25,8 +25,8 @@ mod zentangle;
 
 pub use flora::{
     AdjustSpec, Assign, BackgroundSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec,
-    JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MotifKind, MotifRef, OrnamentSpec,
-    PaintSpec,
+    JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MistSpec, MotifKind, MotifRef,
+    OrnamentSpec, PaintSpec,
 };
 pub use layer::{Family, LayerItem, LayerSpec, Table};
 pub use lsystem::{

@@ -37,19 +37,26 @@
 //! `<layer>.background.tile-<n>`. Later layers can fill the mask's islands
 //! (`region.layer`).
 
-use kurbo::{Affine, BezPath, Point, Rect, Shape};
+use kurbo::{Affine, BezPath, Point, Rect, Shape, Vec2};
 
 use super::placements;
 use crate::error::Result;
 use crate::geom::clip::StrokeClipper;
 use crate::geom::offset::closing;
 use crate::geom::region::{FillRule, Region};
+use crate::geom::PathWalker;
 use crate::geom::TOLERANCE;
 use crate::motif::flora::Drawing;
+use crate::motif::flow_line;
 use crate::motif::tree::{self, Growth};
 use crate::motif::Context;
+use crate::rng::RandomStream;
 use crate::scene::{Color, Group, Style};
-use crate::spec::{BackgroundSpec, LeavesSpec, PaintSpec, TreeSetSpec};
+use crate::spec::{BackgroundSpec, LeavesSpec, MistSpec, PaintSpec, TreeSetSpec};
+
+/// Each step of a mist band stands this much of the band's height above
+/// the one below it.
+const STEP_LIFT: f64 = 0.4;
 
 /// Grey of a solid pattern when the description gives no paint.
 const SOLID_GREY: Color = Color::rgb(0xc8, 0xc8, 0xc8);
@@ -68,17 +75,40 @@ pub(crate) fn background(
     cx: &mut Context<'_>,
 ) -> Result<Group> {
     let mut group = Group::new(group_id);
-    let stamps = stamp_sites(bg, group_id, cx)?;
     let mut rng = cx.stream(&format!("{group_id}.stamp"));
     let stamp = cx.library().draw(&bg.stamp, &mut rng)?;
-    let stamp_boxes: Vec<Affine> = stamps
-        .iter()
-        .map(|p| Affine::translate(p.to_vec2()) * unit_to(&stamp, bg.stamp_width, bg.stamp_height))
-        .collect();
-    let regions: Vec<Region> = stamp_boxes
-        .iter()
-        .filter_map(|m| Region::new(*m * stamp.outline.clone(), FillRule::NonZero).ok())
-        .collect();
+    let (regions, stamp_boxes) = match &bg.mist {
+        Some(mist) => {
+            let mut rng = cx.stream(&format!("{group_id}.mist"));
+            let bands = mist_bands(bg, mist, &mut rng);
+            // Pattern 5 fits its motif to each band's box.
+            let boxes = bands
+                .iter()
+                .map(|r| {
+                    let (b, s) = (r.bounds(), stamp.outline.bounding_box());
+                    Affine::translate(b.center().to_vec2())
+                        * Affine::scale_non_uniform(b.width() / s.width(), b.height() / s.height())
+                        * Affine::translate(-s.center().to_vec2())
+                })
+                .collect();
+            (bands, boxes)
+        }
+        None => {
+            let stamps = stamp_sites(bg, group_id, cx)?;
+            let boxes: Vec<Affine> = stamps
+                .iter()
+                .map(|p| {
+                    Affine::translate(p.to_vec2())
+                        * unit_to(&stamp, bg.stamp_width, bg.stamp_height)
+                })
+                .collect();
+            let regions = boxes
+                .iter()
+                .filter_map(|m| Region::new(*m * stamp.outline.clone(), FillRule::NonZero).ok())
+                .collect();
+            (regions, boxes)
+        }
+    };
     // Rounded into clouds: the notches between stamps become arcs.
     let mask = closing(&Region::union_all(&regions), bg.cloud_radius(), TOLERANCE)?;
     if mask.is_empty() {
@@ -264,6 +294,64 @@ fn solid_style(paint: &PaintSpec) -> Style {
         fill_only: false,
         mask: false,
     }
+}
+
+/// Mist bands along the background's centre line: `bands` stacked across
+/// it (the middle one on the line), each running along a random stretch of
+/// 40–75 % of the line with rounded ends, and `steps` shorter bands on its
+/// upper side, each [`STEP_LIFT`] of a height higher and cut shorter at a
+/// random mix of its two ends, so the band's upper edge climbs in steps.
+fn mist_bands(bg: &BackgroundSpec, mist: &MistSpec, rng: &mut RandomStream) -> Vec<Region> {
+    let walker = PathWalker::new(&flow_line(&bg.centre), TOLERANCE);
+    let total = walker.length();
+    let h = mist.height;
+    // A band with its steps is this thick; bands are `gap` apart.
+    let lift = STEP_LIFT * h;
+    let pitch = h + lift * f64::from(mist.steps) + mist.gap.unwrap_or(0.5 * h);
+    let mut out = Vec::new();
+    for band in 0..mist.bands {
+        let across = (f64::from(band) - 0.5 * f64::from(mist.bands - 1)) * pitch;
+        let length = total * rng.range(0.4, 0.75);
+        let start = rng.range(0.0, total - length);
+        for step in 0..=mist.steps {
+            // Each step is shorter than the one below by a fifth of the
+            // band, taken from its two ends in a random proportion.
+            let cut = 0.2 * length * f64::from(step);
+            let left = cut * rng.range(0.2, 0.8);
+            let (a, b) = (start + left, start + length - (cut - left));
+            if b - a < h {
+                break;
+            }
+            let up = across + lift * f64::from(step);
+            if let Some(r) = band_region(&walker, a, b, up, h) {
+                out.push(r);
+            }
+        }
+    }
+    out
+}
+
+/// The band of thickness `h` with round ends along the stretch `a`–`b` of
+/// the line, moved `lift` mm to its upper side (negative: the lower).
+fn band_region(walker: &PathWalker, a: f64, b: f64, lift: f64, h: f64) -> Option<Region> {
+    let n = ((b - a) / 0.5).ceil().max(1.0) as usize;
+    let mut line = BezPath::new();
+    for k in 0..=n {
+        let s = a + (b - a) * k as f64 / n as f64;
+        let t = walker.tangent_at(s);
+        // Up the page from the line: its normal with y < 0.
+        let normal = Vec2::new(t.y, -t.x);
+        let up = if normal.y > 0.0 { -normal } else { normal };
+        let p = walker.point_at(s) + up * lift;
+        if k == 0 {
+            line.move_to(p);
+        } else {
+            line.line_to(p);
+        }
+    }
+    let style = kurbo::Stroke::new(h).with_caps(kurbo::Cap::Round);
+    let outline = kurbo::stroke(line, &style, &kurbo::StrokeOpts::default(), TOLERANCE);
+    Region::new(outline, FillRule::NonZero).ok()
 }
 
 /// The vertices that get a stamp, from the hidden mask trees.
