@@ -20,13 +20,13 @@ use moyo::templates;
 const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
 
 /// The `moyo` binary, run inside `dir`.
-fn moyo(dir: &TempDir) -> Command {
+pub(crate) fn moyo(dir: &TempDir) -> Command {
     let mut cmd = Command::cargo_bin("moyo").expect("the moyo binary is built");
     cmd.current_dir(dir.path());
     cmd
 }
 
-fn tempdir() -> TempDir {
+pub(crate) fn tempdir() -> TempDir {
     tempfile::tempdir().expect("temporary directory")
 }
 

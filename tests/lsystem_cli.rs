@@ -5,9 +5,9 @@
 
 use std::fs;
 
-use assert_cmd::Command;
 use predicates::prelude::*;
-use tempfile::TempDir;
+
+use crate::cli::{moyo, tempdir as dir};
 
 /// A stroke: one cubic on a 150 mm square page, and a second path that the
 /// sketch must not follow.
@@ -15,16 +15,6 @@ const STROKE: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" width="150mm" h
     <path d="M 20 140 C 40 100, 110 110, 120 20" stroke="#000" fill="none"/>
     <path d="M 0 0 L 150 0" stroke="#000" fill="none"/>
 </svg>"##;
-
-fn moyo(dir: &TempDir) -> Command {
-    let mut cmd = Command::cargo_bin("moyo").expect("the moyo binary is built");
-    cmd.current_dir(dir.path());
-    cmd
-}
-
-fn dir() -> TempDir {
-    tempfile::tempdir().expect("temporary directory")
-}
 
 /// The path data of every `<path>` in an SVG (the drawing, not the
 /// embedded description).

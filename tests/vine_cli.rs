@@ -6,21 +6,10 @@
 
 use std::fs;
 
-use assert_cmd::Command;
 use predicates::prelude::*;
-use tempfile::TempDir;
 
+use crate::cli::{moyo, tempdir as dir};
 use crate::plot_cli::interpreter;
-
-fn moyo(dir: &TempDir) -> Command {
-    let mut cmd = Command::cargo_bin("moyo").expect("the moyo binary is built");
-    cmd.current_dir(dir.path());
-    cmd
-}
-
-fn dir() -> TempDir {
-    tempfile::tempdir().expect("temporary directory")
-}
 
 /// Reads an OBJ with trimesh, one geometry per object, and prints JSON:
 /// for each object its vertex and face counts, whether it is watertight,
