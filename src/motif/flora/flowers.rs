@@ -936,9 +936,17 @@ fn compose(layout: &Layout) -> Drawing {
         .collect();
     let cover = layout.cover.as_ref().map(|c| region_of(&(to_work * c)));
     let stack = DepthStack::new(pieces, cover, CLIP_TOLERANCE);
+    // The closed shapes drawn on top (stamen heads) belong to the
+    // silhouette too: with few petals they can stand beyond them, and a
+    // fill must cover them.
+    let heads = subpaths(&layout.top)
+        .filter(|s| s.is_closed())
+        .map(|s| s.to_path());
     let filler: Vec<Region> = layout
         .filler
         .iter()
+        .cloned()
+        .chain(heads)
         .map(|f| region_of(&(to_work * f)))
         .collect();
     let outline = back * outer_contours(&stack.silhouette(&filler).into_path());

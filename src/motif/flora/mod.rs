@@ -28,7 +28,7 @@ mod tiles;
 use std::collections::BTreeMap;
 use std::sync::{Arc, RwLock};
 
-use kurbo::{Affine, BezPath, Point, Shape};
+use kurbo::{Affine, BezPath, ParamCurveArea, Point, Shape};
 
 use crate::error::{Error, Result};
 use crate::geom::clip::clip_stroke;
@@ -324,15 +324,19 @@ impl Drawing {
     }
 }
 
-/// `path` with every subpath whose signed area has the other sign than
-/// `sign` reversed. Open subpaths count too: a fill closes them with a
-/// straight line, and a detail arc wound against the outline would cut a
-/// hole into the motif's fill.
+/// `path` with every subpath whose area has the other sign than `sign`
+/// reversed. An open subpath's area is taken as a fill closes it, with a
+/// straight chord back to its start.
 fn wound(path: &BezPath, sign: f64) -> BezPath {
     let mut out = BezPath::new();
     for sub in subpaths(path) {
+        let chord = if sub.is_closed() {
+            0.0
+        } else {
+            kurbo::Line::new(sub.end(), sub.start()).signed_area()
+        };
         let sub = sub.to_path();
-        let sub = if sub.area() * sign < 0.0 {
+        let sub = if (sub.area() + chord) * sign < 0.0 {
             sub.reverse_subpaths()
         } else {
             sub
