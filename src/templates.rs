@@ -87,6 +87,7 @@ pub const ALL: &[Template] = templates![
     "vine-border",
     "kimono-vine",
     "kimono-egasumi",
+    "kimono-bokashi",
 ];
 
 impl Template {

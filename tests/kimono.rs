@@ -1852,11 +1852,16 @@ fn subpaths(path: &BezPath) -> Vec<BezPath> {
 }
 
 /// The background masks of a scene before the plot stages, by id.
+/// The outlines of the background masks: the boundary of the area each
+/// mask path fills, without the bokashi lines inside it.
 fn masks(scene: &Scene) -> Vec<(String, BezPath)> {
     page_paths(scene)
         .into_iter()
         .filter(|p| p.id.ends_with(".background.mask"))
-        .map(|p| (p.id, p.path))
+        .map(|p| {
+            let outline = Region::new(p.path, FillRule::NonZero).unwrap();
+            (p.id, outline.into_path())
+        })
         .collect()
 }
 
@@ -2046,4 +2051,112 @@ fn mist_bands_lie_along_their_line_apart_and_on_the_page() {
         100.0 * corners as f64 / length <= 0.5,
         "{corners} in {length:.0} mm"
     );
+}
+
+// ---------------------------------------------------------------- bokashi
+
+/// `text` without its `bokashi = { … }` tables.
+fn without_bokashi(text: &str) -> String {
+    let mut out = text.to_string();
+    while let Some(at) = out.find(", bokashi = {") {
+        let end = at + out[at..].find('}').unwrap() + 1;
+        out.replace_range(at..end, "");
+    }
+    out
+}
+
+/// Where the lines of `lines` cross the segment `a`–`b`, as distances from
+/// `a`, nearest first.
+fn crossings_along(lines: &BezPath, a: Point, b: Point) -> Vec<f64> {
+    let probe = kurbo::Line::new(a, b);
+    let mut at: Vec<f64> = lines
+        .segments()
+        .flat_map(|s| s.intersect_line(probe))
+        .map(|i| i.line_t * a.distance(b))
+        .collect();
+    at.sort_by(f64::total_cmp);
+    at.dedup_by(|x, y| (*x - *y).abs() < 1e-4);
+    at
+}
+
+/// Asserts that the gaps between successive positions grow.
+fn assert_thinning(at: &[f64], what: &str) {
+    let gaps: Vec<f64> = at.windows(2).map(|w| w[1] - w[0]).collect();
+    for g in gaps.windows(2) {
+        assert!(g[1] > g[0] - 1e-3, "{what}: the gaps do not grow: {gaps:?}");
+    }
+}
+
+#[test]
+fn bokashi_lines_thin_out_away_from_where_they_shade_from() {
+    let t = templates::ALL
+        .iter()
+        .find(|t| t.name == "kimono-bokashi")
+        .unwrap();
+    let shaded = page_paths(&build(&t.spec().unwrap()));
+    let plain_text = without_bokashi(t.text);
+    assert!(!plain_text.contains("bokashi ="));
+    let plain: BTreeMap<String, BezPath> = page_paths(&build(&parse(&plain_text)))
+        .into_iter()
+        .map(|p| (p.id, p.path))
+        .collect();
+    let mut checked: BTreeMap<&str, usize> = BTreeMap::new();
+    for p in &shaded {
+        let bare = &plain[&p.id];
+        let n = bare.elements().len();
+        // Shading only adds lines after the shape's own path.
+        assert_eq!(&p.path.elements()[..n], bare.elements(), "{}", p.id);
+        if p.path.elements().len() == n {
+            continue;
+        }
+        let lines = BezPath::from_vec(p.path.elements()[n..].to_vec());
+        // Shading lies inside the shape.
+        let outline = Region::new(bare.clone(), FillRule::NonZero).unwrap();
+        let near = offset(&outline, 0.05, 0.01).unwrap();
+        for seg in lines.segments() {
+            for i in 0..=4 {
+                let q = seg.eval(f64::from(i) / 4.0);
+                assert!(near.contains(q), "{}: {q:?} outside", p.id);
+            }
+        }
+        let kind = if p.id.starts_with("mist.") {
+            "bottom"
+        } else if p.id.starts_with("middle.") {
+            "centre"
+        } else {
+            "edge"
+        };
+        for island in outline.components() {
+            let at = if kind == "bottom" {
+                // Level lines counted up from the island's foot.
+                let b = island.bounds();
+                let x = b.center().x;
+                crossings_along(&lines, Point::new(x, b.y1), Point::new(x, b.y0))
+            } else {
+                // From the deepest point straight to the nearest outline:
+                // along it the distance to the outline falls evenly.
+                let (pole, _) =
+                    moyo::geom::polylabel::pole_of_inaccessibility(&island, 0.01).unwrap();
+                let rim = island
+                    .polygons(0.01)
+                    .into_iter()
+                    .flatten()
+                    .min_by(|a, b| a.distance(pole).total_cmp(&b.distance(pole)))
+                    .unwrap();
+                let mut at = crossings_along(&lines, rim, pole);
+                if kind == "centre" {
+                    let whole = rim.distance(pole);
+                    at = at.iter().rev().map(|x| whole - x).collect();
+                }
+                at
+            };
+            if at.len() >= 3 {
+                assert_thinning(&at, &p.id);
+                *checked.entry(kind).or_default() += 1;
+            }
+        }
+    }
+    for kind in ["edge", "centre", "bottom"] {
+        assert!(checked.get(kind).copied().unwrap_or(0) >= 2, "{checked:?}");
+    }
 }

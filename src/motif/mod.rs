@@ -17,6 +17,7 @@
 //! [`draw`] for one motif on its own, and [`Progress`].
 
 mod adjust;
+mod bokashi;
 mod context;
 mod flora;
 mod flow;

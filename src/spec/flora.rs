@@ -205,6 +205,10 @@ pub struct PaintSpec {
     /// plotting.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hatch: Option<f64>,
+    /// Shade each shape in line, dense at one side and thinning away from
+    /// it (default: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bokashi: Option<BokashiSpec>,
 }
 
 impl Default for PaintSpec {
@@ -214,8 +218,83 @@ impl Default for PaintSpec {
             brightness: 1.0,
             opacity: 1.0,
             hatch: None,
+            bokashi: None,
         }
     }
+}
+
+/// Bokashi (暈し), the dyer's shading, drawn with one pen: lines inside a
+/// shape, close together at the side the shading comes `from` and further
+/// apart away from it, so the shape darkens towards that side.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BokashiSpec {
+    /// Where the shading is densest.
+    #[serde(default)]
+    pub from: ShadeFrom,
+    /// The gap between the dense side and the first line, mm (0.1–20).
+    #[serde(default = "default_shade_spacing")]
+    pub spacing: f64,
+    /// Each gap is this many times the one before it (1–4; 1 is even
+    /// hatching).
+    #[serde(default = "default_shade_growth")]
+    pub growth: f64,
+    /// How far across the shape the shading reaches, as a fraction of the
+    /// way from the dense side to the far side (0.05–1).
+    #[serde(default = "default_shade_reach")]
+    pub reach: f64,
+}
+
+impl Default for BokashiSpec {
+    fn default() -> Self {
+        BokashiSpec {
+            from: ShadeFrom::default(),
+            spacing: default_shade_spacing(),
+            growth: default_shade_growth(),
+            reach: default_shade_reach(),
+        }
+    }
+}
+
+impl BokashiSpec {
+    fn check(&self, f: &str) -> Result<()> {
+        range(&format!("{f}.spacing"), self.spacing, 0.1, 20.0)?;
+        range(&format!("{f}.growth"), self.growth, 1.0, 4.0)?;
+        range(&format!("{f}.reach"), self.reach, 0.05, 1.0)
+    }
+}
+
+fn default_shade_spacing() -> f64 {
+    0.4
+}
+
+fn default_shade_growth() -> f64 {
+    1.4
+}
+
+fn default_shade_reach() -> f64 {
+    0.6
+}
+
+/// The side of a shape a [`BokashiSpec`] shades from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadeFrom {
+    /// The outline: lines follow it inwards (the shape's contours), as
+    /// dye gathers at a petal's rim.
+    #[default]
+    Edge,
+    /// The shape's deepest point: contours around it, dense at the middle.
+    #[serde(alias = "center")]
+    Centre,
+    /// The top of the page: straight lines across, dense at the top.
+    Top,
+    /// The bottom of the page.
+    Bottom,
+    /// The left of the page: upright lines.
+    Left,
+    /// The right of the page.
+    Right,
 }
 
 impl PaintSpec {
@@ -240,6 +319,9 @@ impl PaintSpec {
         range(&format!("{f}.opacity"), self.opacity, 0.0, 1.0)?;
         if let Some(h) = self.hatch {
             range(&format!("{f}.hatch"), h, 0.1, 20.0)?;
+        }
+        if let Some(b) = &self.bokashi {
+            b.check(&format!("{f}.bokashi"))?;
         }
         Ok(())
     }

@@ -24,9 +24,9 @@ mod voronoi;
 mod zentangle;
 
 pub use flora::{
-    AdjustSpec, Assign, BackgroundSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec,
-    JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MistSpec, MotifKind, MotifRef,
-    OrnamentSpec, PaintSpec,
+    AdjustSpec, Assign, BackgroundSpec, BokashiSpec, BuiltMotif, FileMotif, FlowerSites,
+    FlowerSpec, JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MistSpec, MotifKind,
+    MotifRef, OrnamentSpec, PaintSpec, ShadeFrom,
 };
 pub use layer::{Family, LayerItem, LayerSpec, Table};
 pub use lsystem::{

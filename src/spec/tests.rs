@@ -129,3 +129,24 @@ fn custom_size_keeps_its_sides_unless_an_orientation_is_given() {
     let a4 = parse("version = 1\npage = { size = \"A4\" }").unwrap();
     assert_eq!((a4.page().width, a4.page().height), (210.0, 297.0));
 }
+
+#[test]
+fn bokashi_values_are_checked_with_their_place() {
+    let text = MINIMAL.replace(
+        "generations = 5",
+        "generations = 5\n[layers.trees.flowers]\nmotifs = [\"ume\"]\npaint = { bokashi = { growth = 0.5 } }",
+    );
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(
+        msg.contains(
+            "layers[0].trees[0].flowers.paint.bokashi.growth: must be between 1 and 4, got 0.5"
+        ),
+        "{msg}"
+    );
+    let text = text.replace("growth = 0.5", "from = \"middle\"");
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(
+        msg.contains("bokashi.from") && msg.contains("edge"),
+        "{msg}"
+    );
+}

@@ -33,7 +33,8 @@
 //! 5. "special solid": the motif fitted to each stamp's box separately.
 //!
 //! The mask's outline is drawn unless `outline = false`; the base paint
-//! (`paint`) fills it under patterns 2–5. Ids: `<layer>.background.mask`,
+//! (`paint`) fills it under patterns 2–5, and its `bokashi` shades it in
+//! line (with the outline, in the mask's path). Ids: `<layer>.background.mask`,
 //! `<layer>.background.tile-<n>`. Later layers can fill the mask's islands
 //! (`region.layer`).
 
@@ -46,6 +47,7 @@ use crate::geom::offset::closing;
 use crate::geom::region::{FillRule, Region};
 use crate::geom::PathWalker;
 use crate::geom::TOLERANCE;
+use crate::motif::bokashi::shade;
 use crate::motif::flora::Drawing;
 use crate::motif::flow_line;
 use crate::motif::tree::{self, Growth};
@@ -124,9 +126,18 @@ pub(crate) fn background(
     } else {
         paint_style(&bg.paint)
     };
-    if bg.outline || base.fill.is_some() {
+    if bg.outline || base.fill.is_some() || bg.paint.bokashi.is_some() {
         cx.take_paths(1, || format!("background {group_id}"))?;
-        group.push_path(format!("{group_id}.mask"), mask.path().clone(), base);
+        // Without outline and fill, the shading is drawn alone.
+        let mut path = if bg.outline || base.fill.is_some() {
+            mask.path().clone()
+        } else {
+            BezPath::new()
+        };
+        if let Some(b) = &bg.paint.bokashi {
+            path.extend(shade(mask.path(), b)?.elements().iter().copied());
+        }
+        group.push_path(format!("{group_id}.mask"), path, base);
     }
 
     let clipper = StrokeClipper::new(&mask, TOLERANCE);

@@ -30,6 +30,7 @@ use super::GrownTree;
 use crate::error::Result;
 use crate::geom::Side;
 use crate::motif::adjust::about;
+use crate::motif::bokashi::shade;
 use crate::motif::flora::Drawing;
 use crate::motif::tree::Skeleton;
 use crate::motif::Context;
@@ -136,7 +137,13 @@ pub(crate) fn put(
         .unwrap_or(item.motif);
     let d = cx.library().draw(motif, rng)?;
     cx.take_paths(1, || format!("motif {}", item.id))?;
-    group.push_path(item.id, d.to_path(place(&d)), style(item.paint));
+    let placement = place(&d);
+    let mut path = d.to_path(placement);
+    if let Some(b) = &item.paint.bokashi {
+        let lines = shade(&(placement * d.outline.clone()), b)?;
+        path.extend(lines.elements().iter().copied());
+    }
+    group.push_path(item.id, path, style(item.paint));
     Ok(())
 }
 

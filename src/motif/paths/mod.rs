@@ -3,8 +3,9 @@
 //!
 //! Each copy is one path, id `<layer>.<set>.path-<i>`, so `[[adjust]]` can
 //! move, turn, scale or hide it about its site. Closed paths take the
-//! set's paint (fill colour for the preview, hatching for pens) and hide
-//! what lies behind them like any other shape.
+//! set's paint (fill colour for the preview, hatching for pens, bokashi
+//! lines in the copy's own path) and hide what lies behind them like any
+//! other shape.
 
 use kurbo::{Affine, BezPath, PathEl, Point, Shape};
 
@@ -12,6 +13,7 @@ use super::adjust::about;
 use super::{flow_line, Context};
 use crate::error::{Error, Result};
 use crate::geom::{natural_spline, PathWalker, TOLERANCE};
+use crate::motif::bokashi::shade;
 use crate::scene::{Group, Style};
 use crate::spec::{Anchor, Orient, PathsSpec, MAX_COPIES};
 use crate::units::MAX_COORD;
@@ -65,7 +67,12 @@ pub(super) fn build(spec: &PathsSpec, group_id: &str, cx: &mut Context<'_>) -> R
                 format!("copy {id} would reach beyond ±{MAX_COORD} mm"),
             ));
         }
-        group.push_path(id, placed, style.clone());
+        let mut path = placed;
+        if let Some(b) = &spec.paint.bokashi {
+            let lines = shade(&path, b)?;
+            path.extend(lines.elements().iter().copied());
+        }
+        group.push_path(id, path, style.clone());
     }
     Ok(group)
 }

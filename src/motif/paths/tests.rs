@@ -197,3 +197,31 @@ fn an_adjustment_cannot_swap_a_placed_path_for_a_motif() {
     // TOML descriptions point at the line of the offending field.
     assert!(e.starts_with("10:9: "), "{e}");
 }
+
+/// A closed copy's paint bokashi shades it in its own path: level lines
+/// from its top, inside it, further apart further down; an open copy
+/// encloses nothing to shade.
+#[test]
+fn bokashi_shades_closed_copies_in_their_own_path() {
+    let square = "[[layers.paths]]\npoints = [[0, 0], [40, 0], [40, 40], [0, 40]]\nclosed = true\n";
+    let bare = &placed(square).unwrap()["l.paths-0.path-0"];
+    let shaded = format!(
+        "{square}paint = {{ bokashi = {{ from = \"top\", spacing = 1, growth = 2, reach = 1 }} }}\n"
+    );
+    let p = &placed(&shaded).unwrap()["l.paths-0.path-0"];
+    let n = bare.elements().len();
+    assert_eq!(&p.elements()[..n], bare.elements());
+    let ys: Vec<f64> = p.elements()[n..]
+        .iter()
+        .filter_map(|e| match e {
+            kurbo::PathEl::MoveTo(q) => Some(q.y),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(ys, vec![1.0, 3.0, 7.0, 15.0, 31.0]);
+    let open = "[[layers.paths]]\npoints = [[0, 0], [40, 0], [40, 40]]\npaint = { bokashi = {} }\n";
+    assert_eq!(
+        placed(open).unwrap()["l.paths-0.path-0"].elements().len(),
+        3
+    );
+}
