@@ -92,6 +92,7 @@ pub use project::{
     Filled, PlotFormat, PlotJob, Plotted, Rendered,
 };
 pub use rng::{RandomStream, Seed};
+pub use scene::traditional;
 pub use scene::{
     embedded_description, Color, Group, Layer, Model, ModelPart, Node, PathBudget, Pen, Scene,
     Stats, Style, StyledPath,

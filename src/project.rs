@@ -232,7 +232,7 @@ fn build(
         .map(|p| Pen {
             number: p.number,
             name: p.name.clone(),
-            color: Color::parse(&p.color).unwrap_or(Color::BLACK),
+            color: Color::parse_in(&p.color, spec.palette()).unwrap_or(Color::BLACK),
             width: p.width,
         })
         .collect();

@@ -16,6 +16,7 @@ use super::flow::Flow;
 use crate::error::Result;
 use crate::geom::region::Region;
 use crate::rng::{RandomStream, Seed};
+use crate::scene::traditional::Palette;
 use crate::scene::{Model, PathBudget};
 use crate::spec::{LayerSpec, PenSpec, ValidSpec};
 use crate::units::Page;
@@ -65,6 +66,7 @@ pub struct Context<'a> {
     notes: Vec<Note>,
     models: Vec<Model>,
     pens: &'a [PenSpec],
+    palette: &'static Palette,
     /// The names of the layers whose regions a later table fills.
     read: BTreeSet<&'a str>,
     /// The regions those layers drew, by layer name, as they were built.
@@ -100,6 +102,7 @@ impl<'a> Context<'a> {
             notes: Vec::new(),
             models: Vec::new(),
             pens: &spec.pens,
+            palette: spec.palette(),
             read: spec
                 .layers
                 .iter()
@@ -164,6 +167,11 @@ impl<'a> Context<'a> {
             .iter()
             .find(|p| Some(p.number) == number)
             .map_or(0.3, |p| p.width)
+    }
+
+    /// The palette whose colours `@1`–`@5` name.
+    pub fn palette(&self) -> &'static Palette {
+        self.palette
     }
 
     /// The scene's seed.

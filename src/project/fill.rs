@@ -497,6 +497,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         ..ZentangleSpec::default()
     });
     SceneSpec {
+        palette: None,
         version: FORMAT_VERSION,
         title: None,
         description: None,

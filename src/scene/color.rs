@@ -1,6 +1,8 @@
-//! Colours of pens and fills, as `#rrggbb`.
+//! Colours of pens and fills, as `#rrggbb`, named, or a palette's slot.
 
 use std::fmt;
+
+use super::traditional::{traditional, Palette};
 
 /// An sRGB colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -38,8 +40,11 @@ impl Color {
         Color { r, g, b }
     }
 
-    /// Parses `#rgb`, `#rrggbb` or one of a few CSS names (black, white,
-    /// red, green, blue, navy, gray/grey, brown, gold, crimson, indigo).
+    /// Parses `#rgb`, `#rrggbb`, one of a few CSS names (black, white,
+    /// red, green, blue, navy, gray/grey, brown, gold, crimson, indigo) or
+    /// a traditional Japanese colour ([`super::traditional`]: `ai-iro`,
+    /// `ai` or `藍色`). A palette slot (`@1`–`@5`) needs its palette:
+    /// [`Color::parse_in`].
     pub fn parse(s: &str) -> Option<Color> {
         let s = s.trim();
         if let Some(hex) = s.strip_prefix('#') {
@@ -63,6 +68,21 @@ impl Color {
             .iter()
             .find(|(n, _)| n.eq_ignore_ascii_case(s))
             .map(|(_, c)| *c)
+            .or_else(|| traditional(s).map(|t| t.color))
+    }
+
+    /// As [`Color::parse`], and `@1`–`@5` for the colours of `palette`.
+    pub fn parse_in(s: &str, palette: &Palette) -> Option<Color> {
+        match slot(s) {
+            Some(n) => palette.slot(n),
+            None => Color::parse(s),
+        }
+    }
+
+    /// Whether `s` is a colour in some palette: what [`Color::parse`]
+    /// reads, or a palette slot `@1`–`@5`.
+    pub fn is_valid(s: &str) -> bool {
+        Color::parse(s).is_some() || slot(s).is_some_and(|n| (1..=5).contains(&n))
     }
 
     /// Darker towards black for `brightness` < 1, lighter towards white
@@ -89,6 +109,11 @@ impl Color {
     }
 }
 
+/// The palette slot `@n` names, if `s` is one.
+fn slot(s: &str) -> Option<usize> {
+    s.trim().strip_prefix('@')?.parse().ok()
+}
+
 impl fmt::Display for Color {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "#{:02x}{:02x}{:02x}", self.r, self.g, self.b)
@@ -108,6 +133,28 @@ mod tests {
         assert_eq!(Color::parse("#gg0000"), None);
         assert_eq!(Color::parse("chartreuse-ish"), None);
         assert_eq!(Color::rgb(1, 2, 255).to_string(), "#0102ff");
+        assert_eq!(Color::parse("ai-iro"), Color::parse("藍色"));
+        assert!(Color::parse("Ai").is_some());
+    }
+
+    #[test]
+    fn slots_take_their_palettes_colours() {
+        use super::super::traditional::{palette, traditional};
+        let kaga = palette("kaga-gosai").unwrap();
+        let kyo = palette("kyo").unwrap();
+        assert_eq!(
+            Color::parse_in("@2", kaga),
+            traditional("ai-iro").map(|t| t.color)
+        );
+        assert_eq!(
+            Color::parse_in("@1", kyo),
+            traditional("shu-iro").map(|t| t.color)
+        );
+        assert_eq!(Color::parse_in("#fff", kyo), Color::parse("#fff"));
+        assert_eq!(Color::parse_in("@6", kyo), None);
+        assert_eq!(Color::parse("@1"), None);
+        assert!(Color::is_valid("@5") && Color::is_valid("moegi"));
+        assert!(!Color::is_valid("@0") && !Color::is_valid("@6") && !Color::is_valid("@x"));
     }
 
     #[test]

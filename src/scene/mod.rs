@@ -11,6 +11,7 @@ mod budget;
 mod color;
 pub(crate) mod embed;
 mod model;
+pub mod traditional;
 
 pub use budget::PathBudget;
 pub use color::Color;

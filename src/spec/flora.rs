@@ -20,6 +20,7 @@ use super::layer::Family;
 use super::validate::{point, range};
 use super::{Growth, Points, TreeParams, TreeRule};
 use crate::error::{Error, Result};
+use crate::scene::traditional::Palette;
 use crate::scene::Color;
 
 /// A built-in vector motif (SPEC §1.5): flowers, leaves, and shapes for
@@ -192,7 +193,8 @@ pub enum MainLargest {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PaintSpec {
-    /// Fill colour of the preview (default: none, outline only).
+    /// Fill colour of the preview, any colour or palette slot (default:
+    /// none, outline only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fill: Option<String>,
     /// 0 (black) – 1 (as given) – 2 (white).
@@ -303,15 +305,16 @@ impl PaintSpec {
         *self == PaintSpec::default()
     }
 
-    /// The preview fill colour after brightness and opacity.
-    pub fn color(&self) -> Option<Color> {
-        let c = Color::parse(self.fill.as_deref()?)?;
+    /// The preview fill colour after brightness and opacity, `@n` taken
+    /// from `palette`.
+    pub fn color(&self, palette: &Palette) -> Option<Color> {
+        let c = Color::parse_in(self.fill.as_deref()?, palette)?;
         Some(c.shaded(self.brightness).over_white(self.opacity))
     }
 
     pub(crate) fn check(&self, f: &str) -> Result<()> {
         if let Some(fill) = &self.fill {
-            if Color::parse(fill).is_none() {
+            if !Color::is_valid(fill) {
                 return Err(super::validate::bad_color(&format!("{f}.fill"), fill));
             }
         }

@@ -49,6 +49,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, LineCol, Result};
 use crate::plot::PlotOptions;
+use crate::scene::traditional::{self, Palette};
 use crate::units::{Margins, Orientation, Page, PaperName};
 
 /// The newest file format version this build reads and writes.
@@ -98,6 +99,11 @@ pub struct SceneSpec {
     /// Safety limits.
     #[serde(default)]
     pub limits: LimitsSpec,
+    /// The palette whose colours `@1`–`@5` name in any colour field
+    /// ([`crate::traditional::PALETTES`]); default: the first,
+    /// `kaga-gosai`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub palette: Option<String>,
     /// Pens; default: pen 1, black, 0.3 mm.
     #[serde(default = "default_pens")]
     pub pens: Vec<PenSpec>,
@@ -256,7 +262,8 @@ pub struct PenSpec {
     /// Short name, e.g. `black`.
     #[serde(default = "default_pen_name")]
     pub name: String,
-    /// `#rrggbb`, `#rgb` or a CSS colour name.
+    /// `#rrggbb`, `#rgb`, a CSS or traditional colour name, or a palette
+    /// slot `@1`–`@5`.
     #[serde(default = "default_pen_color")]
     pub color: String,
     /// Line width in mm (0.01–20).
@@ -322,6 +329,15 @@ impl SceneSpec {
     /// The resolved page.
     pub fn page(&self) -> Page {
         self.page.page()
+    }
+
+    /// The palette `@1`–`@5` refer to (an unknown name, which validation
+    /// refuses, gives the default).
+    pub fn palette(&self) -> &'static Palette {
+        self.palette
+            .as_deref()
+            .and_then(traditional::palette)
+            .unwrap_or(&traditional::PALETTES[0])
     }
 }
 

@@ -150,3 +150,24 @@ fn bokashi_values_are_checked_with_their_place() {
         "{msg}"
     );
 }
+
+#[test]
+fn palettes_are_named_and_their_slots_checked() {
+    let text = format!("palette = \"kyoto\"\n{MINIMAL}");
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(
+        msg.contains("palette: unknown palette 'kyoto'") && msg.contains("kaga-gosai"),
+        "{msg}"
+    );
+    let text = MINIMAL.replace(
+        "generations = 5",
+        "generations = 5\n[layers.trees.flowers]\nmotifs = [\"ume\"]\npaint = { fill = \"@6\" }",
+    );
+    let msg = parse(&text).unwrap_err().to_string();
+    assert!(
+        msg.contains("flowers.paint.fill: '@6' is not a colour"),
+        "{msg}"
+    );
+    assert!(parse(&text.replace("@6", "@5")).is_ok());
+    assert!(parse(&text.replace("@6", "sakura-iro")).is_ok());
+}

@@ -39,7 +39,8 @@ pub struct LimbSpec {
     /// (−1 – 1); positive bows towards the branch's own side.
     #[serde(default = "default_bow")]
     pub bow: f64,
-    /// Fill colour for outlines (default: none, outline only).
+    /// Fill colour for outlines, any colour or palette slot (default:
+    /// none, outline only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fill: Option<String>,
 }

@@ -8,6 +8,7 @@ use std::fmt::Display;
 
 use super::{LayerSpec, MarginSpec, PaperSize, SceneSpec};
 use crate::error::{Error, Result};
+use crate::scene::traditional;
 use crate::scene::Color;
 use crate::units::MAX_COORD;
 
@@ -111,6 +112,18 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
     range("output.precision", s.output.precision, 0, 8)?;
     range("limits.max_paths", s.limits.max_paths, 1, 5_000_000)?;
 
+    if let Some(name) = &s.palette {
+        if traditional::palette(name).is_none() {
+            let names: Vec<&str> = traditional::PALETTES.iter().map(|p| p.name).collect();
+            return Err(Error::invalid(
+                "palette",
+                format!(
+                    "unknown palette '{name}'; the palettes are {}",
+                    names.join(", ")
+                ),
+            ));
+        }
+    }
     if s.pens.is_empty() {
         return Err(Error::invalid("pens", "at least one pen is needed"));
     }
@@ -130,7 +143,7 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
                 "must be 1–64 characters",
             ));
         }
-        if Color::parse(&pen.color).is_none() {
+        if !Color::is_valid(&pen.color) {
             return Err(bad_color(&format!("{f}.color"), &pen.color));
         }
         range(&format!("{f}.width"), pen.width, 0.01, 20.0)?;
@@ -178,7 +191,10 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
 pub(crate) fn bad_color(field: &str, value: &str) -> Error {
     Error::invalid(
         field,
-        format!("'{value}' is not a colour: use #rrggbb, #rgb or a CSS name such as black"),
+        format!(
+            "'{value}' is not a colour: use #rrggbb, #rgb, a CSS name such as black, \
+             a traditional colour such as ai-iro, or a palette slot @1–@5"
+        ),
     )
 }
 
@@ -235,7 +251,7 @@ fn layer(f: &str, layer: &LayerSpec, pens: &BTreeSet<u32>) -> Result<()> {
     range(&format!("{f}.limbs.tip_width"), l.tip_width, 0.0, 50.0)?;
     range(&format!("{f}.limbs.bow"), l.bow, -1.0, 1.0)?;
     if let Some(fill) = &l.fill {
-        if Color::parse(fill).is_none() {
+        if !Color::is_valid(fill) {
             return Err(bad_color(&format!("{f}.limbs.fill"), fill));
         }
     }

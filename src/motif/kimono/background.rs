@@ -53,6 +53,7 @@ use crate::motif::flow_line;
 use crate::motif::tree::{self, Growth};
 use crate::motif::Context;
 use crate::rng::RandomStream;
+use crate::scene::traditional::Palette;
 use crate::scene::{Color, Group, Style};
 use crate::spec::{BackgroundSpec, LeavesSpec, MistSpec, PaintSpec, TreeSetSpec};
 
@@ -122,9 +123,9 @@ pub(crate) fn background(
     }
 
     let base = if bg.pattern == 1 {
-        solid_style(&bg.paint)
+        solid_style(&bg.paint, cx.palette())
     } else {
-        paint_style(&bg.paint)
+        paint_style(&bg.paint, cx.palette())
     };
     if bg.outline || base.fill.is_some() || bg.paint.bokashi.is_some() {
         cx.take_paths(1, || format!("background {group_id}"))?;
@@ -287,9 +288,9 @@ impl Tiles<'_, '_, '_> {
     }
 }
 
-fn paint_style(paint: &PaintSpec) -> Style {
+fn paint_style(paint: &PaintSpec, palette: &Palette) -> Style {
     Style {
-        fill: paint.color(),
+        fill: paint.color(palette),
         hatch: paint.hatch,
         fill_only: false,
         mask: false,
@@ -297,8 +298,8 @@ fn paint_style(paint: &PaintSpec) -> Style {
 }
 
 /// Pattern 1's paint: the description's, or grey hatched every 1 mm.
-fn solid_style(paint: &PaintSpec) -> Style {
-    let style = paint_style(paint);
+fn solid_style(paint: &PaintSpec, palette: &Palette) -> Style {
+    let style = paint_style(paint, palette);
     Style {
         fill: style.fill.or(Some(SOLID_GREY)),
         hatch: style.hatch.or(Some(SOLID_HATCH)),

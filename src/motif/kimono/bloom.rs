@@ -35,6 +35,7 @@ use crate::motif::flora::Drawing;
 use crate::motif::tree::Skeleton;
 use crate::motif::Context;
 use crate::rng::RandomStream;
+use crate::scene::traditional::Palette;
 use crate::scene::{Group, Style};
 use crate::spec::{
     AdjustSpec, Assign, FlowerSites, FlowerSpec, MainLargest, MotifRef, PaintSpec, TreeSetSpec,
@@ -74,9 +75,9 @@ pub(crate) fn angle_from_up(d: Vec2) -> f64 {
     d.x.atan2(-d.y)
 }
 
-fn style(paint: &PaintSpec) -> Style {
+fn style(paint: &PaintSpec, palette: &Palette) -> Style {
     Style {
-        fill: paint.color(),
+        fill: paint.color(palette),
         hatch: paint.hatch,
         fill_only: false,
         mask: false,
@@ -143,7 +144,7 @@ pub(crate) fn put(
         let lines = shade(&(placement * d.outline.clone()), b)?;
         path.extend(lines.elements().iter().copied());
     }
-    group.push_path(item.id, path, style(item.paint));
+    group.push_path(item.id, path, style(item.paint, cx.palette()));
     Ok(())
 }
 

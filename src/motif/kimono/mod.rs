@@ -109,7 +109,10 @@ pub(super) fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) 
     let mut group = Group::new(group_id);
     let limbs = &cx.layer().limbs;
     let style = Style {
-        fill: limbs.fill.as_deref().and_then(Color::parse),
+        fill: limbs
+            .fill
+            .as_deref()
+            .and_then(|f| Color::parse_in(f, cx.palette())),
         ..Style::default()
     };
     let overrides = overrides_by_tree(set);

@@ -38,7 +38,7 @@ pub(super) fn build(spec: &PathsSpec, group_id: &str, cx: &mut Context<'_>) -> R
     let sites = sites(spec, anchor, cx)?;
     cx.take_paths(sites.len(), || format!("paths {group_id}"))?;
     let style = Style {
-        fill: spec.paint.color(),
+        fill: spec.paint.color(cx.palette()),
         hatch: spec.paint.hatch,
         fill_only: false,
         mask: false,

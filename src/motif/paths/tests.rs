@@ -225,3 +225,32 @@ fn bokashi_shades_closed_copies_in_their_own_path() {
         3
     );
 }
+
+/// `@n` takes the palette's colour, for pens and fills alike; another
+/// palette recolours the same description.
+#[test]
+fn palette_slots_colour_pens_and_fills() {
+    use crate::scene::traditional::traditional;
+    let text = |palette: &str| {
+        format!(
+            "version = 1\npalette = \"{palette}\"\n[[pens]]\nnumber = 1\ncolor = \"@2\"\n\
+             [[layers]]\nname = \"l\"\n[[layers.paths]]\n\
+             points = [[0, 0], [40, 0], [40, 40]]\nclosed = true\npaint = {{ fill = \"@3\" }}\n"
+        )
+    };
+    let colours = |palette: &str| {
+        let spec = SceneSpec::parse(&text(palette), Format::Toml).unwrap();
+        let scene = build_scene(&spec).unwrap();
+        let mut fill = None;
+        scene.layers[0]
+            .content
+            .visit_paths(Affine::IDENTITY, &mut |p, _| fill = p.style.fill);
+        (scene.pens[0].color, fill.unwrap())
+    };
+    let colour = |name: &str| traditional(name).unwrap().color;
+    assert_eq!(
+        colours("kaga-gosai"),
+        (colour("ai-iro"), colour("matsuba-iro"))
+    );
+    assert_eq!(colours("kyo"), (colour("asagi-iro"), colour("moegi")));
+}
