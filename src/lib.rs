@@ -66,6 +66,7 @@
 use {clap as _, indicatif as _};
 
 mod error;
+pub mod fuzz;
 pub mod geom;
 pub mod input;
 pub mod lsystem;

@@ -9,6 +9,7 @@ mod cli;
 mod compat;
 mod determinism;
 mod fill_cli;
+mod fuzz_regressions;
 mod golden;
 mod kimono;
 mod lsystem_cli;
