@@ -31,7 +31,7 @@ pub(crate) fn tempdir() -> TempDir {
 }
 
 /// Names of everything in `dir`.
-fn entries(dir: &Path) -> BTreeSet<String> {
+pub(crate) fn entries(dir: &Path) -> BTreeSet<String> {
     fs::read_dir(dir)
         .expect("readable directory")
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
