@@ -17,7 +17,8 @@ use crate::geom::density::{GreyImage, MAX_IMAGE_PIXELS};
 ///
 /// # Errors
 /// [`Error::Invalid`] (field `image`) when the bytes are neither PNG nor
-/// JPEG, do not decode, or the image is larger than [`MAX_IMAGE_PIXELS`].
+/// JPEG, do not decode, or the image is larger than [`MAX_IMAGE_PIXELS`]
+/// or 32,768 pixels on a side.
 pub fn decode_image(bytes: &[u8]) -> Result<GreyImage> {
     const PNG: &[u8] = b"\x89PNG\r\n\x1a\n";
     const JPEG: &[u8] = b"\xff\xd8\xff";
@@ -63,8 +64,8 @@ fn decode_jpeg(bytes: &[u8]) -> Result<GreyImage> {
         |e: &dyn std::fmt::Display| Error::invalid("image", format!("is not a readable JPEG: {e}"));
     let options = DecoderOptions::default()
         .jpeg_set_out_colorspace(ColorSpace::Luma)
-        .set_max_width(1 << 16)
-        .set_max_height(1 << 16);
+        .set_max_width(MAX_SIDE)
+        .set_max_height(MAX_SIDE);
     let mut decoder = JpegDecoder::new_with_options(ZCursor::new(bytes), options);
     decoder.decode_headers().map_err(|e| bad(&e))?;
     let info = decoder.info().ok_or_else(|| bad(&"no image header"))?;
@@ -97,7 +98,18 @@ fn png_size(bytes: &[u8]) -> Result<(usize, usize)> {
     Ok((be(&header[8..12]), be(&header[12..16])))
 }
 
+/// Longest side read, in pixels. Below 2¹⁶ with room to spare: zune-jpeg
+/// rounds a width up to whole blocks in 16 bits and overflowed on a
+/// 65,535-pixel header (found by fuzzing).
+const MAX_SIDE: usize = 32_768;
+
 fn check_size(width: usize, height: usize) -> Result<()> {
+    if width > MAX_SIDE || height > MAX_SIDE {
+        return Err(Error::invalid(
+            "image",
+            format!("{width} × {height} pixels: a side is longer than the {MAX_SIDE} read"),
+        ));
+    }
     if width.saturating_mul(height) > MAX_IMAGE_PIXELS {
         return Err(Error::invalid(
             "image",
@@ -133,11 +145,29 @@ mod tests {
     fn a_huge_png_header_is_refused_before_decoding() {
         let case = include_bytes!("../../fuzz/crashers/image/png-huge-header.png");
         let e = decode_image(case).unwrap_err().to_string();
-        assert!(e.contains("47 × 452984879 pixels is more than"), "{e}");
+        assert!(e.contains("47 × 452984879 pixels: a side is longer"), "{e}");
         // The real size of a small PNG passes the check.
         let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="3" height="2"/>"#;
         let png = crate::output::render_png(svg, 96.0).unwrap();
         assert_eq!(png_size(&png).unwrap(), (3, 2));
+    }
+
+    /// JPEG headers 65,535 pixels wide are refused before decoding (found
+    /// by fuzzing: the decoder's block count overflowed).
+    #[test]
+    fn a_jpeg_wider_than_the_largest_side_is_refused() {
+        for case in [
+            &include_bytes!("../../fuzz/crashers/image/jpeg-width-overflow-1.jpg")[..],
+            include_bytes!("../../fuzz/crashers/image/jpeg-width-overflow-4.jpg"),
+        ] {
+            let e = decode_image(case).unwrap_err().to_string();
+            assert!(
+                e.contains("not a readable JPEG") || e.contains("longer than"),
+                "{e}"
+            );
+        }
+        assert!(check_size(MAX_SIDE, 1).is_ok());
+        assert!(check_size(MAX_SIDE + 1, 1).is_err());
     }
 
     #[test]
