@@ -85,6 +85,18 @@ pub enum Error {
         /// What was being generated when the budget ran out.
         what: String,
     },
+    /// Generation would exceed the scene's segment budget
+    /// (`limits.max_segments`): few paths, but very long ones.
+    #[error(
+        "segment budget exceeded: {what} would make more than {limit} path segments \
+         (raise limits.max_segments, or lower iterations/count)"
+    )]
+    SegmentBudget {
+        /// The configured limit.
+        limit: usize,
+        /// What was being generated when the budget ran out.
+        what: String,
+    },
     /// No built-in template has this name.
     #[error("unknown template '{name}' (available: {available})")]
     UnknownTemplate {

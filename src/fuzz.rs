@@ -3,6 +3,15 @@
 //! it, within a small path budget. None may panic, hang or run out of
 //! memory; an input it cannot use is an `Err`, which is a fine answer.
 //!
+//! One target is structured: [`Target::SceneExtremes`] does not parse
+//! its bytes but takes them as choices (`arbitrary`'s [`Unstructured`])
+//! that edit a valid description at its limits — each numeric field set
+//! to the ends of the range validation allows it
+//! ([`crate::spec::ValidSpec::ranges`]), points made to coincide, lines
+//! made zero-length, tables repeated — so that the generators themselves
+//! meet trees of 64 generations and counts at their maximum, not only
+//! the parsers' refusals.
+//!
 //! The coverage-guided targets in `fuzz/` (cargo-afl, see
 //! `fuzz/README.md`) call [`Target::run`], and so does the regression test
 //! `tests/fuzz_regressions.rs`, on every input a fuzzer ever found that
@@ -10,6 +19,8 @@
 //! fixed in plain `cargo test`.
 
 use std::collections::BTreeMap;
+
+use arbitrary::Unstructured;
 
 use crate::error::{Error, Result};
 use crate::input::{decode_image, import_svg, ImportOptions};
@@ -24,7 +35,12 @@ use crate::vine::TriMesh;
 
 /// The path budget of a fuzzed description: its own `limits.max_paths`,
 /// but at most this many, so one case cannot take long.
-pub const MAX_PATHS: usize = 20_000;
+pub const MAX_PATHS: usize = 2_000;
+
+/// The segment budget of a fuzzed description, likewise: one path may
+/// hold millions of segments (an L-system's), and drawing them is slow
+/// without being wrong.
+pub const MAX_SEGMENTS: usize = 200_000;
 
 /// Longest input a target reads, in bytes (a fuzzer's inputs are small;
 /// the resource bounds of large inputs are tested on their own).
@@ -57,11 +73,17 @@ pub enum Target {
     /// L-system rule text: the first line the axiom, every other line a
     /// production, derived a few steps.
     LsystemRules,
+    /// A stroke file: an SVG whose paths, joined, are the stroke a sketch
+    /// L-system grows along.
+    Stroke,
+    /// Choices that edit a built-in description at its limits (see the
+    /// module docs).
+    SceneExtremes,
 }
 
 impl Target {
     /// Every target.
-    pub const ALL: [Target; 7] = [
+    pub const ALL: [Target; 9] = [
         Target::SceneToml,
         Target::SceneJson,
         Target::Svg,
@@ -69,6 +91,8 @@ impl Target {
         Target::Obj,
         Target::Image,
         Target::LsystemRules,
+        Target::Stroke,
+        Target::SceneExtremes,
     ];
 
     /// Its name: the fuzz binary's and its corpus folder's.
@@ -81,6 +105,8 @@ impl Target {
             Target::Obj => "obj",
             Target::Image => "image",
             Target::LsystemRules => "lsystem_rules",
+            Target::Stroke => "stroke",
+            Target::SceneExtremes => "scene_extremes",
         }
     }
 
@@ -109,6 +135,8 @@ impl Target {
             Target::Obj => TriMesh::parse_obj(text(bytes)?, "obj").map(|_| ()),
             Target::Image => decode_image(bytes).map(|_| ()),
             Target::LsystemRules => lsystem_rules(text(bytes)?),
+            Target::Stroke => stroke(bytes),
+            Target::SceneExtremes => extremes(bytes),
         }
     }
 }
@@ -118,14 +146,22 @@ fn text(bytes: &[u8]) -> Result<&str> {
 }
 
 /// Validates a description and renders it, with every plot output, its
-/// path budget capped at [`MAX_PATHS`]. The files it names are not there.
+/// budgets capped at [`MAX_PATHS`] and [`MAX_SEGMENTS`]. The files it
+/// names are not there.
 fn scene(text: &str, format: Format) -> Result<()> {
+    scene_with(text, format, &|_| None)
+}
+
+/// As [`scene`], with the files `file` gives by name.
+fn scene_with(text: &str, format: Format, file: &dyn Fn(&str) -> Option<Vec<u8>>) -> Result<()> {
     let mut spec = SceneSpec::parse(text, format)?.into_inner();
     spec.limits.max_paths = spec.limits.max_paths.min(MAX_PATHS);
+    spec.limits.max_segments = spec.limits.max_segments.min(MAX_SEGMENTS);
     let spec = spec.validate()?;
     let library = project::load_motifs_with(&spec, &|name: &str| {
-        let missing = std::io::Error::new(std::io::ErrorKind::NotFound, "not in a fuzz case");
-        (name.to_string(), Err(missing))
+        let bytes = file(name)
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "not in a fuzz case"));
+        (name.to_string(), bytes)
     })?;
     let rendered = project::render_with_progress(&spec, &library, &mut |_| {})?;
     to_obj(&rendered.models, spec.output.precision);
@@ -169,6 +205,245 @@ fn lsystem_rules(text: &str) -> Result<()> {
     Ok(())
 }
 
+/// The description a stroke file is grown in: the sketch L-system of the
+/// source, with the stroke read from `stroke.svg`.
+const STROKE_SCENE: &str = "version = 1\n\
+    [page]\nsize = \"A5\"\n\
+    [[layers]]\nname = \"sketch\"\n\
+    [[layers.lsystem]]\nid = \"sketch\"\nstyle = \"outline\"\n\
+    [layers.lsystem.sketch]\nsvg = \"stroke.svg\"\nmodule = 6\n";
+
+/// Grows the sketch L-system along the stroke in `bytes` (an SVG).
+fn stroke(bytes: &[u8]) -> Result<()> {
+    scene_with(STROKE_SCENE, Format::Toml, &|name| {
+        (name == "stroke.svg").then(|| bytes.to_vec())
+    })
+}
+
+/// The built-in descriptions [`Target::SceneExtremes`] starts from: one
+/// or more of every family, each rendering in well under 100 ms, so that
+/// the fuzzer's time goes to the edits.
+pub const EXTREMES_BASES: &[&str] = &[
+    "tree-rules",
+    "tomesode-hem",
+    "kimono-2",
+    "lsystem-koch",
+    "lsystem-plant-a",
+    "lsystem-bush",
+    "lsystem-sketch-straight",
+    "zentangle-2",
+    "zentangle-10",
+    "voronoi-stained-glass",
+    "delaunay-lowpoly",
+    "cracked-earth",
+    "vine-basic",
+    "vine-opposite",
+    "vine-cross",
+    "vine-fence",
+];
+
+/// Most edits one case makes.
+const MAX_EDITS: u32 = 8;
+
+/// Edits a built-in description by the choices in `bytes` and renders it.
+fn extremes(bytes: &[u8]) -> Result<()> {
+    let text = extreme_description(bytes)?;
+    scene_with(&text, Format::Toml, &|name| {
+        crate::templates::file(name).map(<[u8]>::to_vec)
+    })
+}
+
+/// The description a [`Target::SceneExtremes`] case renders: a built-in
+/// one (of [`EXTREMES_BASES`]) with the edits the choices in `bytes`
+/// make, as TOML — to read a finding, or to render it with `moyo render`.
+///
+/// # Errors
+/// When `bytes` run out before a template is chosen.
+pub fn extreme_description(bytes: &[u8]) -> Result<String> {
+    let mut u = Unstructured::new(bytes);
+    let name = *u.choose(EXTREMES_BASES).map_err(choices)?;
+    let template = crate::templates::get(name)?;
+    let spec = template.spec()?;
+    let ranges = spec.ranges();
+    let mut value: toml::Value = toml::from_str(&spec.to_toml())
+        .map_err(|e| Error::invalid("input", format!("a template did not read back: {e}")))?;
+    let edits = u.int_in_range(1..=MAX_EDITS).map_err(choices)?;
+    for _ in 0..edits {
+        if u.is_empty() {
+            break;
+        }
+        edit(&mut u, &mut value, &ranges).map_err(choices)?;
+    }
+    toml::to_string(&value)
+        .map_err(|e| Error::invalid("input", format!("the edit cannot be written: {e}")))
+}
+
+fn choices(e: arbitrary::Error) -> Error {
+    Error::invalid("input", format!("not enough choices: {e}"))
+}
+
+/// One edit of the description `value`.
+fn edit(
+    u: &mut Unstructured<'_>,
+    value: &mut toml::Value,
+    ranges: &[crate::spec::FieldRange],
+) -> arbitrary::Result<()> {
+    match u.int_in_range(0..=9)? {
+        // Most edits put a number at the end of its range.
+        0..=5 if !ranges.is_empty() => {
+            let r = u.choose(ranges)?;
+            let v = extreme(u, r.lo, r.hi)?;
+            // Only a number is replaced: some ranges bound a list's length.
+            if let Some(slot) = at(value, &r.field).filter(|v| v.is_integer() || v.is_float()) {
+                *slot = if r.integer {
+                    // Within i64 for every integer range moyo checks.
+                    #[allow(clippy::cast_possible_truncation)]
+                    toml::Value::Integer(v.round().clamp(-9.2e18, 9.2e18) as i64)
+                } else {
+                    toml::Value::Float(v)
+                };
+            }
+        }
+        // Two neighbouring points of a line made one.
+        6 => {
+            let lines = point_lists(value);
+            if !lines.is_empty() {
+                let path = u.choose(&lines)?.clone();
+                if let Some(toml::Value::Array(points)) = at(value, &path) {
+                    if points.len() >= 2 {
+                        let i = u.choose_index(points.len() - 1)?;
+                        points[i + 1] = points[i].clone();
+                    }
+                }
+            }
+        }
+        // A line of two points a hair apart (zero length to a plotter).
+        7 => {
+            let lines = point_lists(value);
+            if !lines.is_empty() {
+                let path = u.choose(&lines)?.clone();
+                if let Some(toml::Value::Array(points)) = at(value, &path) {
+                    if let Some([x, y]) = points.first().and_then(xy) {
+                        let n = points.len();
+                        for (i, p) in points.iter_mut().enumerate() {
+                            *p = pair(if i + 1 == n { x + 1e-9 } else { x }, y);
+                        }
+                    }
+                }
+            }
+        }
+        // A table repeated: every layer's tables twice.
+        _ => {
+            if let Some(toml::Value::Array(layers)) = value.get_mut("layers") {
+                if !layers.is_empty() {
+                    let i = u.choose_index(layers.len())?;
+                    if let Some(toml::Value::Table(layer)) = layers.get_mut(i) {
+                        for (_, table) in layer.iter_mut() {
+                            if let toml::Value::Array(items) = table {
+                                let copies = items.clone();
+                                let n = items.len();
+                                items.extend(copies.into_iter().map(|c| renamed(c, n)));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A value in `lo..=hi`, most often one of its ends or a hair inside.
+fn extreme(u: &mut Unstructured<'_>, lo: f64, hi: f64) -> arbitrary::Result<f64> {
+    let span = hi - lo;
+    Ok(match u.int_in_range(0..=5)? {
+        0 | 1 => lo,
+        2 | 3 => hi,
+        4 => {
+            if u.arbitrary()? {
+                lo + span * 1e-9
+            } else {
+                hi - span * 1e-9
+            }
+        }
+        _ => lo + span * f64::from(u.arbitrary::<u16>()?) / f64::from(u16::MAX),
+    })
+}
+
+/// The value at `field` (a path as errors write it: `a.b[2].c`), if the
+/// description holds one there.
+fn at<'v>(value: &'v mut toml::Value, field: &str) -> Option<&'v mut toml::Value> {
+    let mut here = value;
+    for part in field.split('.') {
+        let (key, indices) = part.split_once('[').unwrap_or((part, ""));
+        if !key.is_empty() {
+            here = here.get_mut(key)?;
+        }
+        for index in indices.split('[').filter(|i| !i.is_empty()) {
+            let i: usize = index.trim_end_matches(']').parse().ok()?;
+            here = here.get_mut(i)?;
+        }
+    }
+    Some(here)
+}
+
+/// The paths of every list of two or more `[x, y]` points in `value`.
+fn point_lists(value: &toml::Value) -> Vec<String> {
+    fn walk(v: &toml::Value, path: String, out: &mut Vec<String>) {
+        match v {
+            toml::Value::Table(t) => {
+                for (k, v) in t {
+                    let next = if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    };
+                    walk(v, next, out);
+                }
+            }
+            toml::Value::Array(a) => {
+                if a.len() >= 2 && a.iter().all(|p| xy(p).is_some()) {
+                    out.push(path);
+                } else {
+                    for (i, v) in a.iter().enumerate() {
+                        walk(v, format!("{path}[{i}]"), out);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    walk(value, String::new(), &mut out);
+    out
+}
+
+/// A point `[x, y]`.
+fn xy(v: &toml::Value) -> Option<[f64; 2]> {
+    let number = |v: &toml::Value| {
+        // Coordinates are far below 2⁵³.
+        #[allow(clippy::cast_precision_loss)]
+        v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+    };
+    match v.as_array()?.as_slice() {
+        [x, y] => Some([number(x)?, number(y)?]),
+        _ => None,
+    }
+}
+
+fn pair(x: f64, y: f64) -> toml::Value {
+    toml::Value::Array(vec![toml::Value::Float(x), toml::Value::Float(y)])
+}
+
+/// A copy of a table, added after `n` others, with its id (if any) made
+/// new.
+fn renamed(mut item: toml::Value, n: usize) -> toml::Value {
+    if let Some(toml::Value::String(id)) = item.get_mut("id") {
+        id.push_str(&format!("-{n}"));
+    }
+    item
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,12 +453,82 @@ mod tests {
         for t in Target::ALL {
             assert_eq!(Target::from_name(t.name()), Some(t));
             assert!(
-                t.run(&[0xff, 0xfe, 0x00]).is_err() || t == Target::Image,
+                t.run(&[0xff, 0xfe, 0x00]).is_err()
+                    || [Target::Image, Target::SceneExtremes].contains(&t),
                 "{t:?}"
             );
             assert!(t.run(&vec![b' '; MAX_INPUT + 1]).is_err(), "{t:?}");
         }
         assert_eq!(Target::from_name("nothing"), None);
+    }
+
+    /// Bytes from a fixed xorshift stream, as a fuzzer's would be.
+    fn choices(n: usize, state: &mut u64) -> Vec<u8> {
+        (0..n)
+            .map(|_| {
+                *state ^= *state << 13;
+                *state ^= *state >> 7;
+                *state ^= *state << 17;
+                (*state >> 24) as u8
+            })
+            .collect()
+    }
+
+    #[test]
+    fn extreme_edits_keep_descriptions_valid_and_put_numbers_at_their_limits() {
+        for name in EXTREMES_BASES {
+            crate::templates::get(name).unwrap();
+        }
+        let mut state = 99;
+        let (mut valid, mut at_limit) = (0, 0);
+        for _ in 0..60 {
+            let bytes = choices(48, &mut state);
+            let text = extreme_description(&bytes).unwrap();
+            assert_eq!(text, extreme_description(&bytes).unwrap());
+            // Always a description in shape; mostly a valid one.
+            let spec = match SceneSpec::parse(&text, Format::Toml) {
+                Ok(spec) => spec,
+                Err(Error::Invalid { .. }) => continue,
+                Err(e) => panic!("{e}\n{text}"),
+            };
+            valid += 1;
+            let base = EXTREMES_BASES
+                .iter()
+                .map(|n| crate::templates::get(n).unwrap().spec().unwrap())
+                .find(|b| b.title == spec.title)
+                .unwrap();
+            at_limit += spec
+                .ranges()
+                .iter()
+                .filter(|r| {
+                    let mut v: toml::Value = toml::from_str(&text).unwrap();
+                    let mut b: toml::Value = toml::from_str(&base.to_toml()).unwrap();
+                    let now = at(&mut v, &r.field).and_then(|v| xy_number(v));
+                    let was = at(&mut b, &r.field).and_then(|v| xy_number(v));
+                    now != was && (now == Some(r.lo) || now == Some(r.hi))
+                })
+                .count();
+        }
+        assert!(valid >= 30, "{valid} of 60 valid");
+        assert!(at_limit >= 20, "{at_limit} fields moved to a limit");
+    }
+
+    fn xy_number(v: &toml::Value) -> Option<f64> {
+        #[allow(clippy::cast_precision_loss)]
+        v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+    }
+
+    #[test]
+    fn field_paths_reach_into_tables_and_lists() {
+        let mut v: toml::Value =
+            toml::from_str("a = [{ b = [[1, 2], [3, 4]] }]\nc = { d = 5 }").unwrap();
+        assert_eq!(
+            at(&mut v, "a[0].b[1][0]").and_then(|v| v.as_integer()),
+            Some(3)
+        );
+        assert_eq!(at(&mut v, "c.d").and_then(|v| v.as_integer()), Some(5));
+        assert!(at(&mut v, "a[3].b").is_none() && at(&mut v, "c.e").is_none());
+        assert_eq!(point_lists(&v), vec!["a[0].b".to_string()]);
     }
 
     #[test]

@@ -83,7 +83,7 @@ fn push_new(list: &mut Vec<String>, name: &str) {
 pub fn load_motifs(spec: &ValidSpec, base: &Path) -> Result<Library> {
     load_motifs_with(spec, &|name| {
         let path = base.join(name);
-        (path.display().to_string(), std::fs::read(&path))
+        (path.display().to_string(), crate::input::read_file(&path))
     })
 }
 
@@ -214,7 +214,11 @@ fn build(
         cx.enter_layer((index, layer), id, depth);
         let mut content = Group::new(format!("{id}.motifs"));
         for item in layer.items() {
-            content.push_group(motif::build(&item, &mut cx)?);
+            let group = motif::build(&item, &mut cx)?;
+            let segments = group.segment_count();
+            cx.budget()
+                .take_segments(segments, || format!("`{}`", group.id))?;
+            content.push_group(group);
         }
         layers.push(Layer {
             id: id.clone(),
@@ -361,7 +365,7 @@ use crate::scene::Style;
 /// [`Error::Io`] when the file cannot be read; [`Error::File`] naming the
 /// file around the import's error.
 pub fn read_svg(path: &Path, options: &ImportOptions) -> Result<Imported> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = crate::input::read_text(path).map_err(|e| Error::io(path, e))?;
     import_svg(&text, options).map_err(|e| Error::File {
         path: path.to_path_buf(),
         source: Box::new(e),

@@ -15,6 +15,7 @@ mod kimono;
 mod lsystem_cli;
 mod plot_cli;
 mod readme;
+mod resource_bounds;
 mod safe_writes;
 mod snapshots;
 mod valid_spec;

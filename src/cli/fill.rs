@@ -122,7 +122,7 @@ impl FillArgs {
         if let Some(path) = &self.image {
             let fail =
                 |e: &dyn std::fmt::Display| CliError::Message(format!("{}: {e}", path.display()));
-            let bytes = std::fs::read(path).map_err(|e| fail(&e))?;
+            let bytes = moyo::input::read_file(path).map_err(|e| fail(&e))?;
             job = job.with_image(moyo::input::decode_image(&bytes).map_err(|e| fail(&e))?);
         }
         Ok(job)

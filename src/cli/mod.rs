@@ -157,7 +157,7 @@ pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
 /// are read from.
 fn load(args: &RenderArgs) -> Result<(ValidSpec, Files), CliError> {
     let read = |path: &Path| {
-        std::fs::read_to_string(path)
+        moyo::input::read_text(path)
             .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))
     };
     let base = |path: &Path| {

@@ -95,7 +95,7 @@ impl<'a> Context<'a> {
             flow,
             layer: None,
             item: String::new(),
-            budget: PathBudget::new(spec.limits.max_paths),
+            budget: PathBudget::new(spec.limits.max_paths).with_segments(spec.limits.max_segments),
             adjust: Adjustments::new(&spec.adjust),
             progress: Progress { done: 0, total },
             report,

@@ -462,10 +462,8 @@ fn hide(
             });
             match visible_part(p, clippers, tolerance) {
                 Outcome::Cut(stroke, _) if p.filled && preview_fills => {
-                    let behind: Vec<Region> =
-                        front.iter().map(|&k| occluders[k].region.clone()).collect();
                     let fill = Region::new(p.page.clone(), FillRule::NonZero)
-                        .map(|r| r.difference_all(&behind))
+                        .map(|r| visible_area(r, front.iter().map(|&k| &occluders[k].region)))
                         .ok()
                         .filter(|r| !r.is_empty())
                         .map(|r| VisibleFill {
@@ -478,6 +476,31 @@ fn hide(
             }
         })
         .collect()
+}
+
+/// What is left of `area` outside the `front` shapes, taken away a few at
+/// a time: the shapes in front of one overlap each other too, and one
+/// sweep over all of them would find all their crossings with each other
+/// again for every shape behind (cubic in a pile of overlapping flowers);
+/// a few at a time, the area left is usually gone (hidden) or small
+/// after the first ones.
+fn visible_area<'a>(mut area: Region, front: impl Iterator<Item = &'a Region>) -> Region {
+    const AT_ONCE: usize = 4;
+    let front: Vec<&Region> = front.collect();
+    for batch in front.chunks(AT_ONCE) {
+        if area.is_empty() {
+            break;
+        }
+        let batch: Vec<Region> = batch
+            .iter()
+            .filter(|r| r.bounds().overlaps(area.bounds()))
+            .map(|&r| r.clone())
+            .collect();
+        if !batch.is_empty() {
+            area = area.difference_all(&batch);
+        }
+    }
+    area
 }
 
 /// What is left of a path outside every one of the shapes prepared by
@@ -658,6 +681,35 @@ mod tests {
     use kurbo::{Circle, Line, ParamCurve, ParamCurveNearest, PathEl, Point, Shape};
     use proptest::prelude::*;
     use std::collections::HashMap;
+
+    #[test]
+    fn the_visible_area_taken_a_few_shapes_at_a_time_is_the_area_outside_all_of_them() {
+        use crate::geom::region::tests::{circle, star};
+        // A pile: twenty stars around one spot, a ring of circles beside
+        // it, and the area behind them all.
+        let area = circle(50.0, 50.0, 30.0);
+        let mut front: Vec<Region> = (0..20)
+            .map(|i| {
+                let a = f64::from(i) * 0.7;
+                let c = Point::new(50.0 + 6.0 * a.cos(), 50.0 + 6.0 * a.sin());
+                star(c, 12.0, 5.0, 5 + i as usize % 3, a, i % 4 == 0)
+            })
+            .collect();
+        front.extend((0..12).map(|i| {
+            let a = f64::from(i) * std::f64::consts::TAU / 12.0;
+            circle(50.0 + 28.0 * a.cos(), 50.0 + 28.0 * a.sin(), 5.0)
+        }));
+        // Far away: skipped by its bounds.
+        front.push(circle(500.0, 500.0, 5.0));
+        let at_once = area.difference_all(&front);
+        let few = visible_area(area.clone(), front.iter());
+        assert!(at_once.area() > 100.0 && at_once.area() < area.area() - 100.0);
+        assert!((few.area() - at_once.area()).abs() < 1e-6 * area.area());
+        assert!(few.xor(&at_once).area() < 1e-6 * area.area());
+        // Hidden entirely: nothing is left, and the rest is not looked at.
+        let hidden = visible_area(circle(50.0, 50.0, 3.0), front.iter());
+        assert!(hidden.is_empty());
+    }
 
     fn layer(id: &str, depth: i32, content: Group) -> Layer {
         Layer {

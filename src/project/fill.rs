@@ -512,6 +512,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         // counts here.
         limits: LimitsSpec {
             max_paths: 5_000_000,
+            ..LimitsSpec::default()
         },
         pens: vec![PenSpec {
             number: pen,

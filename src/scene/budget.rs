@@ -1,16 +1,23 @@
-//! The path budget: a hard cap on how many paths a scene may make.
+//! The path budget: a hard cap on how many paths a scene may make, and on
+//! how many segments (lines and curves) they may hold in all.
 //!
-//! Generators take from the budget *before* they allocate, so a runaway
-//! description (thousands of trees, deep recursion) stops with
-//! [`Error::Budget`] instead of exhausting memory or time.
+//! Generators take paths from the budget *before* they allocate, so a
+//! runaway description (thousands of trees, deep recursion) stops with
+//! [`Error::Budget`] instead of exhausting memory or time. Segments are
+//! counted per table once it is built, and a family whose one path can
+//! grow without bound (an L-system's turtle) stops at what is left
+//! ([`PathBudget::segments_left`]), with [`Error::SegmentBudget`].
 
 use crate::error::{Error, Result};
 
-/// Counts paths against `limits.max_paths`.
+/// Counts paths against `limits.max_paths` and segments against
+/// `limits.max_segments`.
 #[derive(Debug, Clone)]
 pub struct PathBudget {
     limit: usize,
     used: usize,
+    segment_limit: usize,
+    segments: usize,
 }
 
 impl PathBudget {
@@ -18,9 +25,27 @@ impl PathBudget {
     /// 100,000 strokes takes many hours to plot), small enough to stay fast.
     pub const DEFAULT_LIMIT: usize = 200_000;
 
-    /// A budget of `limit` paths.
+    /// The default segment limit: ten million segments make an SVG of
+    /// about 150 MB, far past what a plotter draws in a day.
+    pub const DEFAULT_SEGMENT_LIMIT: usize = 10_000_000;
+
+    /// A budget of `limit` paths and the default number of segments.
     pub fn new(limit: usize) -> PathBudget {
-        PathBudget { limit, used: 0 }
+        PathBudget {
+            limit,
+            used: 0,
+            segment_limit: PathBudget::DEFAULT_SEGMENT_LIMIT,
+            segments: 0,
+        }
+    }
+
+    /// The same budget with `limit` segments.
+    #[must_use]
+    pub fn with_segments(self, limit: usize) -> PathBudget {
+        PathBudget {
+            segment_limit: limit,
+            ..self
+        }
     }
 
     /// Takes `n` paths for `what`; fails when the limit would be passed.
@@ -40,6 +65,24 @@ impl PathBudget {
     pub fn used(&self) -> usize {
         self.used
     }
+
+    /// Takes `n` segments for `what`; fails when the limit would be passed.
+    pub fn take_segments(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
+        let next = self.segments.saturating_add(n);
+        if next > self.segment_limit {
+            return Err(Error::SegmentBudget {
+                limit: self.segment_limit,
+                what: what(),
+            });
+        }
+        self.segments = next;
+        Ok(())
+    }
+
+    /// Segments that may still be made.
+    pub fn segments_left(&self) -> usize {
+        self.segment_limit - self.segments
+    }
 }
 
 #[cfg(test)]
@@ -54,5 +97,17 @@ mod tests {
         assert!(e.to_string().contains("more than 10 paths"), "{e}");
         assert!(e.to_string().contains("tree 3"));
         assert_eq!(b.used(), 10);
+    }
+
+    #[test]
+    fn segments_stop_exactly_at_their_limit() {
+        let mut b = PathBudget::new(10).with_segments(100);
+        b.take_segments(60, || "x".into()).unwrap();
+        assert_eq!(b.segments_left(), 40);
+        let e = b.take_segments(41, || "koch".into()).unwrap_err();
+        assert!(e.to_string().contains("more than 100 path segments"), "{e}");
+        assert!(e.to_string().contains("koch"));
+        b.take_segments(40, || "x".into()).unwrap();
+        assert_eq!(b.segments_left(), 0);
     }
 }

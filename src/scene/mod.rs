@@ -135,6 +135,20 @@ impl Group {
         self.children.push(Node::Group(group));
     }
 
+    /// Number of segments (lines and curves) in all paths below this group.
+    pub fn segment_count(&self) -> usize {
+        let mut n = 0;
+        self.visit_paths(Affine::IDENTITY, &mut |p, _| {
+            n += p
+                .path
+                .elements()
+                .iter()
+                .filter(|e| !matches!(e, kurbo::PathEl::MoveTo(_)))
+                .count();
+        });
+        n
+    }
+
     /// Calls `f` for every path below this group with its transform to the
     /// coordinates of `outer` (the transform of everything above the group).
     pub fn visit_paths<'a>(&'a self, outer: Affine, f: &mut impl FnMut(&'a StyledPath, Affine)) {

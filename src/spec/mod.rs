@@ -38,6 +38,7 @@ pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
 pub use region::{CircleSpec, HoleSpec, RegionSpec};
 pub use trees::{Growth, LimbSpec, LimbStyle, Rhythm, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
+pub use validate::FieldRange;
 pub use vine::{CameraPreset, CameraSpec, GuideSpec, Part, SupportSpec, VineSpec};
 pub use voronoi::{
     Distribution, Draw, RelaxationMethod, SitesSpec, VoronoiSpec, DEFAULT_SPACING, MAX_RELAX,
@@ -239,18 +240,36 @@ pub struct LimitsSpec {
     /// with an error past it.
     #[serde(default = "default_max_paths")]
     pub max_paths: usize,
+    /// The most path segments (lines and curves) all paths may hold
+    /// (1 – 50,000,000); generation stops with an error past it.
+    #[serde(
+        default = "default_max_segments",
+        skip_serializing_if = "is_default_max_segments"
+    )]
+    pub max_segments: usize,
 }
 
 impl Default for LimitsSpec {
     fn default() -> Self {
         LimitsSpec {
             max_paths: default_max_paths(),
+            max_segments: default_max_segments(),
         }
     }
 }
 
 fn default_max_paths() -> usize {
     crate::scene::PathBudget::DEFAULT_LIMIT
+}
+
+fn default_max_segments() -> usize {
+    crate::scene::PathBudget::DEFAULT_SEGMENT_LIMIT
+}
+
+/// The default is left out of a written description, so descriptions
+/// written before the limit existed read the same.
+fn is_default_max_segments(n: &usize) -> bool {
+    *n == default_max_segments()
 }
 
 /// A pen (one SVG layer per pen).

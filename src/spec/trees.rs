@@ -230,29 +230,45 @@ impl Rhythm {
         Ok(())
     }
 
-    /// Where tree `i` of `n` stands, as a fraction of the centre line,
-    /// its scale and its extra turn in degrees.
-    pub fn place(&self, i: usize, n: usize) -> (f64, f64, f64) {
-        let t = if n > 1 {
-            i as f64 / (n - 1) as f64
-        } else {
-            0.0
-        };
-        let scale = self.lead * (self.tail / self.lead).powf(t);
-        let turn = self.turn * (t - 0.5);
+    /// Where each of `n` trees stands, as a fraction of the centre line,
+    /// its scale and its extra turn in degrees; in one pass, as a set may
+    /// hold ten thousand trees.
+    pub fn places(&self, n: usize) -> Vec<(f64, f64, f64)> {
         // A half gap before the first tree and after the last; gap j (after
         // tree j) is `spacing^j`, twice that where a rest follows tree j.
-        let gap = |j: usize| self.spacing.powi(j as i32);
+        // Only their ratios matter: growing gaps are counted down from the
+        // last, which is 1, as 10^10000 would be infinite.
+        let last = n.saturating_sub(2) as f64;
+        let gap = |j: usize| {
+            if self.spacing > 1.0 {
+                self.spacing.powf(j as f64 - last)
+            } else {
+                self.spacing.powf(j as f64)
+            }
+        };
+        let rests: BTreeSet<usize> = self.rests.iter().map(|&r| r as usize).collect();
         let mut s = 0.5 * gap(0);
         let mut at = Vec::with_capacity(n);
         at.push(s);
         for j in 0..n.saturating_sub(1) {
-            let rest = self.rests.contains(&(j as u32));
+            let rest = rests.contains(&j);
             s += if rest { 2.0 * gap(j) } else { gap(j) };
             at.push(s);
         }
         let total = s + 0.5 * gap(n.saturating_sub(2));
-        (at[i] / total, scale, turn)
+        at.into_iter()
+            .take(n)
+            .enumerate()
+            .map(|(i, a)| {
+                let t = if n > 1 {
+                    i as f64 / (n - 1) as f64
+                } else {
+                    0.0
+                };
+                let scale = self.lead * (self.tail / self.lead).powf(t);
+                (a / total, scale, self.turn * (t - 0.5))
+            })
+            .collect()
     }
 }
 

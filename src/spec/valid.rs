@@ -49,6 +49,22 @@ impl ValidSpec {
         Ok(ValidSpec { spec, toml: None })
     }
 
+    /// Every numeric field of this description that validation checks
+    /// against a range, with that range, in the order of the description.
+    /// A field left out of the description is listed when it has a
+    /// default that is checked; an optional one only when it is given.
+    ///
+    /// ```
+    /// let spec = moyo::templates::get("tree-rules")?.spec()?;
+    /// let ranges = spec.ranges();
+    /// let precision = ranges.iter().find(|r| r.field == "output.precision").unwrap();
+    /// assert_eq!((precision.lo, precision.hi, precision.integer), (0.0, 8.0, true));
+    /// # Ok::<(), moyo::Error>(())
+    /// ```
+    pub fn ranges(&self) -> Vec<super::FieldRange> {
+        super::validate::recording(|| super::validate::scene(&self.spec)).1
+    }
+
     /// The description.
     pub fn spec(&self) -> &SceneSpec {
         &self.spec

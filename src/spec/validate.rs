@@ -3,6 +3,7 @@
 //! Returns the first problem found, as [`Error::Invalid`] with the field
 //! path; [`super::SceneSpec::parse`] adds the line and column.
 
+use std::cell::RefCell;
 use std::collections::BTreeSet;
 use std::fmt::Display;
 
@@ -12,8 +13,68 @@ use crate::scene::traditional;
 use crate::scene::Color;
 use crate::units::MAX_COORD;
 
+/// A numeric field and the range validation allows it, as recorded by
+/// [`super::ValidSpec::ranges`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldRange {
+    /// The field's path, as errors name it (`layers[0].trees[1].count`).
+    pub field: String,
+    /// The least value allowed.
+    pub lo: f64,
+    /// The greatest value allowed.
+    pub hi: f64,
+    /// Whether the field holds whole numbers.
+    pub integer: bool,
+}
+
+/// A number validation checks against a range.
+pub(crate) trait Bound: PartialOrd + Display + Copy {
+    /// Whether the type holds whole numbers.
+    const INTEGER: bool;
+    /// The value as a float, for [`FieldRange`] (exact up to 2⁵³).
+    fn to_f64(self) -> f64;
+}
+
+macro_rules! bound {
+    ($integer:literal: $($t:ty),*) => {$(
+        impl Bound for $t {
+            const INTEGER: bool = $integer;
+            #[allow(clippy::cast_precision_loss, clippy::cast_lossless)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+        }
+    )*};
+}
+bound!(true: u8, u16, u32, u64, usize, i32, i64);
+bound!(false: f64);
+
+thread_local! {
+    /// The ranges checked while [`recording`] runs, in the order checked.
+    static RECORDED: RefCell<Option<Vec<FieldRange>>> = const { RefCell::new(None) };
+}
+
+/// Runs `validate` and gives the range of every field it checked on the
+/// way (one source of truth for the ranges: the checks themselves).
+pub(crate) fn recording(validate: impl FnOnce() -> Result<()>) -> (Result<()>, Vec<FieldRange>) {
+    let outer = RECORDED.with(|r| r.borrow_mut().replace(Vec::new()));
+    let result = validate();
+    let ranges = RECORDED.with(|r| std::mem::replace(&mut *r.borrow_mut(), outer));
+    (result, ranges.unwrap_or_default())
+}
+
 /// `lo <= v <= hi`; NaN fails with the same message.
-pub(crate) fn range<T: PartialOrd + Display + Copy>(field: &str, v: T, lo: T, hi: T) -> Result<()> {
+pub(crate) fn range<T: Bound>(field: &str, v: T, lo: T, hi: T) -> Result<()> {
+    RECORDED.with(|r| {
+        if let Some(ranges) = r.borrow_mut().as_mut() {
+            ranges.push(FieldRange {
+                field: field.to_string(),
+                lo: lo.to_f64(),
+                hi: hi.to_f64(),
+                integer: T::INTEGER,
+            });
+        }
+    });
     if lo <= v && v <= hi {
         Ok(())
     } else {
@@ -111,6 +172,7 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
     page(s)?;
     range("output.precision", s.output.precision, 0, 8)?;
     range("limits.max_paths", s.limits.max_paths, 1, 5_000_000)?;
+    range("limits.max_segments", s.limits.max_segments, 1, 50_000_000)?;
 
     if let Some(name) = &s.palette {
         if traditional::palette(name).is_none() {

@@ -100,6 +100,8 @@ mod walk;
 #[cfg(test)]
 mod test_support;
 
+pub use walk::MAX_IMPORT_SEGMENTS;
+
 use kurbo::Affine;
 use resvg::usvg::{self, roxmltree};
 use serde::{Deserialize, Serialize};
@@ -324,9 +326,11 @@ fn usvg_error(e: usvg::Error) -> Error {
             "the document has no usable size: width and height must be \
              positive, or a viewBox must be given",
         ),
-        usvg::Error::ElementsLimitReached => {
-            parse_error("the document has more than 1,000,000 elements")
-        }
+        usvg::Error::ElementsLimitReached
+        | usvg::Error::ParsingFailed(roxmltree::Error::NodesLimitReached) => parse_error(
+            "the document has more than 1,000,000 elements, or elements nested more than \
+             1,024 deep: the most moyo imports (usvg's limits)",
+        ),
         usvg::Error::ParsingFailed(roxmltree::Error::NoRootNode) => {
             parse_error("not an SVG document: the root element must be <svg>")
         }

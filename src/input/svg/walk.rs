@@ -44,14 +44,34 @@ pub(super) struct Walked {
     pub effects: usize,
 }
 
+/// The most segments (lines and curves) an imported SVG may hold: the
+/// default segment budget of a scene, a thousand hours of plotting. The
+/// heaviest SVG within it and the element limit (a million paths of ten
+/// segments) peaks at about 2.1 GB through `plot --merge --sort` (see
+/// `RELIABILITY.md`).
+pub const MAX_IMPORT_SEGMENTS: usize = 10_000_000;
+
 /// Walks `tree`, mapping its coordinates to mm with `to_mm`; `layers` are
 /// the top-level layers the scan found, matched to usvg's groups by id.
 ///
 /// # Errors
-/// [`Error::Invalid`] for a point beyond ±[`MAX_COORD`] mm.
+/// [`Error::Invalid`] for a point beyond ±[`MAX_COORD`] mm, or more than
+/// [`MAX_IMPORT_SEGMENTS`] segments.
 pub(super) fn walk(tree: &usvg::Tree, to_mm: Affine, layers: &[LayerSource]) -> Result<Walked> {
+    walk_within(tree, to_mm, layers, MAX_IMPORT_SEGMENTS)
+}
+
+/// [`walk`] with at most `max_segments` segments.
+fn walk_within(
+    tree: &usvg::Tree,
+    to_mm: Affine,
+    layers: &[LayerSource],
+    max_segments: usize,
+) -> Result<Walked> {
     let mut walker = Walker {
         to_mm,
+        segments: 0,
+        max_segments,
         layer_of: layers
             .iter()
             .enumerate()
@@ -71,6 +91,10 @@ pub(super) fn walk(tree: &usvg::Tree, to_mm: Affine, layers: &[LayerSource]) -> 
 
 struct Walker<'a> {
     to_mm: Affine,
+    /// Segments in the paths walked so far.
+    segments: usize,
+    /// The most there may be.
+    max_segments: usize,
     layer_of: HashMap<&'a str, usize>,
     walked: Walked,
 }
@@ -108,6 +132,18 @@ impl Walker<'_> {
         if !p.is_visible() {
             self.walked.invisible += 1;
             return Ok(());
+        }
+        // Checked before the path is built: the file size alone lets a
+        // few very long paths hold far more segments than a plot needs.
+        self.segments += p.data().len();
+        if self.segments > self.max_segments {
+            return Err(Error::invalid(
+                "svg",
+                format!(
+                    "the paths hold more than {} segments in all, the most moyo imports",
+                    grouped(self.max_segments)
+                ),
+            ));
         }
         let to_page = self.to_mm * affine(p.abs_transform());
         let mut path = BezPath::new();
@@ -236,6 +272,19 @@ fn paint_color(paint: &usvg::Paint) -> Color {
     Color::rgb(c.red, c.green, c.blue)
 }
 
+/// `n` with its thousands grouped: 10,000,000.
+fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::test_support::{assert_rect_near, doc, import, near, only_path, paths};
@@ -244,6 +293,20 @@ mod tests {
     use crate::scene::Color;
     use kurbo::{PathEl, Rect, Shape};
     use std::f64::consts::PI;
+
+    #[test]
+    fn more_segments_than_the_limit_are_refused_before_they_are_built() {
+        let text = doc(r#"<path d="M0 0 L1 1 L2 0 Z" stroke="black"/>
+                          <path d="M5 5 h1 v1 h-1" stroke="black"/>"#);
+        let tree = resvg::usvg::Tree::from_str(&text, &resvg::usvg::Options::default()).unwrap();
+        // Four and four segments, moves and closes counted.
+        let walked = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 8).unwrap();
+        assert_eq!(walked.drawn.len(), 2);
+        let e = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 7).unwrap_err();
+        assert!(e.to_string().contains("more than 7 segments"), "{e}");
+        assert_eq!(super::grouped(10_000_000), "10,000,000");
+        assert_eq!(super::grouped(999), "999");
+    }
 
     #[test]
     fn nested_transforms_land_where_expected() {

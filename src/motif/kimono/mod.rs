@@ -53,12 +53,11 @@ fn overrides_by_tree(set: &TreeSetSpec) -> Vec<Option<&TreeOverride>> {
 /// The placements of a set's trees, overrides applied.
 pub(super) fn placements(set: &TreeSetSpec) -> Vec<Placement> {
     let walker = PathWalker::new(&flow_line(&set.centre), TOLERANCE);
-    let n = set.count as usize;
+    let places = set.rhythm.places(set.count as usize);
     overrides_by_tree(set)
         .into_iter()
-        .enumerate()
-        .map(|(i, o)| {
-            let (along, size, fan) = set.rhythm.place(i, n);
+        .zip(places)
+        .map(|(o, (along, size, fan))| {
             let s = walker.length() * along;
             let tangent = walker.tangent_at(s);
             let base = match set.growth {

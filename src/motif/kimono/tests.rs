@@ -478,6 +478,28 @@ fn a_rhythm_leads_with_a_large_tree_crowds_towards_a_quiet_tail_and_rests() {
 }
 
 #[test]
+fn ten_thousand_trees_with_the_widest_gaps_stand_in_order_on_the_line() {
+    // spacing^9998 is far beyond f64; the places must still be finite,
+    // in order and on the line (and found in one pass: this was quadratic).
+    for spacing in [10.0, 0.1] {
+        let rhythm = Rhythm {
+            spacing,
+            rests: (0..9998).step_by(7).collect(),
+            ..Rhythm::default()
+        };
+        let places = rhythm.places(10_000);
+        assert_eq!(places.len(), 10_000);
+        assert!(places
+            .iter()
+            .all(|p| p.0.is_finite() && (0.0..=1.0).contains(&p.0)));
+        assert!(places.windows(2).all(|w| w[0].0 <= w[1].0), "{spacing}");
+        // The widest gap is at the growing end.
+        let (first, last) = (places[1].0 - places[0].0, places[9999].0 - places[9998].0);
+        assert_eq!(spacing > 1.0, last > first, "{spacing}: {first} {last}");
+    }
+}
+
+#[test]
 fn a_rest_after_the_last_tree_is_refused() {
     let text = "version = 1\n[[layers]]\nname = \"l\"\n[[layers.trees]]\nrule = \"tree2\"\n\
                 count = 3\ncentre = [[0, 100], [100, 100]]\nrhythm = { rests = [2] }\n";

@@ -146,7 +146,7 @@ fn grow(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Skel
         .with_angle(spec.angle)
         .with_width(spec.width)
         .with_width_factor(spec.width_factor)
-        .with_max_segments(MAX_SEGMENTS)
+        .with_max_segments(MAX_SEGMENTS.min(cx.budget().segments_left()))
         .with_marks(&marked(spec));
     if let Some(t) = &spec.tropism {
         let [x, y, z] = t.direction;
@@ -182,7 +182,7 @@ fn grow_sketch(spec: &SketchSpec, cx: &mut Context<'_>) -> Result<Skeleton> {
         // A hair past k modules, so that rounding cannot lose the last.
         cut(&mut stroke, f64::from(k) * spec.module + 1e-9);
     }
-    let mut sketch = Sketch::new(rules, MAX_SEGMENTS)?;
+    let mut sketch = Sketch::new(rules, MAX_SEGMENTS.min(cx.budget().segments_left()))?;
     sketch.extend(&stroke)?;
     Ok(sketch.skeleton())
 }

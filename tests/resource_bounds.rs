@@ -1,0 +1,107 @@
+//! The resource bounds of each command hold from the command line: past
+//! them moyo stops with a message naming the limit, exits non-zero and
+//! writes nothing — never a hang or an out-of-memory kill. The limits and
+//! the peak memory within them are in RELIABILITY.md.
+
+use std::fs;
+
+use predicates::prelude::*;
+
+use crate::cli::{entries, moyo, tempdir};
+
+/// An SVG page around `body`.
+fn svg(body: &str) -> String {
+    format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">{body}</svg>"#
+    )
+}
+
+#[cfg(unix)]
+#[test]
+fn a_file_that_never_ends_is_refused_at_256_mib() {
+    let dir = tempdir();
+    moyo(&dir)
+        .args(["plot", "/dev/zero", "-o", "out.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "/dev/zero: larger than 256 MiB, the largest file moyo reads",
+        ));
+    moyo(&dir)
+        .args(["render", "/dev/zero", "-o", "out.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("larger than 256 MiB"));
+    assert!(entries(dir.path()).is_empty());
+}
+
+#[test]
+fn groups_nested_past_1024_are_refused_with_the_limit() {
+    let dir = tempdir();
+    let depth = 1100;
+    let body = format!(
+        "{}<path d=\"M0 0 L10 10\" stroke=\"black\"/>{}",
+        "<g>".repeat(depth),
+        "</g>".repeat(depth)
+    );
+    fs::write(dir.path().join("deep.svg"), svg(&body)).unwrap();
+    moyo(&dir)
+        .args(["plot", "deep.svg", "-o", "out.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("nested more than 1,024 deep"));
+    assert_eq!(entries(dir.path()), ["deep.svg".to_string()].into());
+}
+
+#[test]
+fn an_entity_bomb_is_refused() {
+    let dir = tempdir();
+    let mut dtd = String::from("<!DOCTYPE svg [<!ENTITY a0 \"lol\">");
+    for i in 1..10 {
+        let prev = format!("&a{};", i - 1);
+        dtd.push_str(&format!("<!ENTITY a{i} \"{}\">", prev.repeat(10)));
+    }
+    dtd.push(']');
+    dtd.push('>');
+    let text = format!("{dtd}{}", svg("<text>&a9;</text>"));
+    fs::write(dir.path().join("bomb.svg"), text).unwrap();
+    moyo(&dir)
+        .args(["plot", "bomb.svg", "-o", "out.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("bomb.svg"));
+    assert_eq!(entries(dir.path()), ["bomb.svg".to_string()].into());
+}
+
+#[test]
+fn a_scene_past_its_segment_budget_stops_naming_the_limit() {
+    let dir = tempdir();
+    let text = "version = 1\nlimits = { max_segments = 5000 }\n[[layers]]\nname = \"l\"\n\
+                [[layers.lsystem]]\nid = \"koch\"\naxiom = \"F--F--F\"\n\
+                rules = [\"F -> F+F--F+F\"]\niterations = 6\nangle = 60\n";
+    fs::write(dir.path().join("koch.toml"), text).unwrap();
+    moyo(&dir)
+        .args(["render", "koch.toml", "-o", "out.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("5000").and(predicate::str::contains("segments")));
+    assert_eq!(entries(dir.path()), ["koch.toml".to_string()].into());
+    // Iterations 5 (3 × 4⁵ = 3072 segments) fit.
+    fs::write(dir.path().join("koch.toml"), text.replace("= 6", "= 5")).unwrap();
+    moyo(&dir)
+        .args(["render", "koch.toml", "-o", "out.svg"])
+        .assert()
+        .success();
+    // A family that counts no segments itself is stopped after its table.
+    let trees = "version = 1\nlimits = { max_segments = 50 }\n[[layers]]\nname = \"a\"\n\
+                 [[layers.trees]]\nid = \"t\"\nrule = \"tree1\"\ncount = 3\n\
+                 centre = [[10, 100], [100, 100]]\n";
+    fs::write(dir.path().join("trees.toml"), trees).unwrap();
+    moyo(&dir)
+        .args(["render", "trees.toml", "-o", "trees.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "`a.t` would make more than 50 path segments",
+        ));
+}
