@@ -97,6 +97,10 @@ pub enum Error {
         /// What was being generated when the budget ran out.
         what: String,
     },
+    /// The work was called off before it finished (a newer edit in the
+    /// studio made it stale); nothing is wrong with the input.
+    #[error("cancelled: a newer request replaced this one")]
+    Cancelled,
     /// No built-in template has this name.
     #[error("unknown template '{name}' (available: {available})")]
     UnknownTemplate {

@@ -30,6 +30,7 @@ use crate::plot::{HatchOptions, MergeOptions, OccludeOptions, PlotOptions, SortO
 use crate::project::{self, plot_scene, PlotFormat, PlotJob};
 use crate::rng::Seed;
 use crate::scene::embedded_description;
+use crate::spec::field::value_at_mut as at;
 use crate::spec::{Format, SceneSpec};
 use crate::vine::TriMesh;
 
@@ -370,23 +371,6 @@ fn extreme(u: &mut Unstructured<'_>, lo: f64, hi: f64) -> arbitrary::Result<f64>
     })
 }
 
-/// The value at `field` (a path as errors write it: `a.b[2].c`), if the
-/// description holds one there.
-fn at<'v>(value: &'v mut toml::Value, field: &str) -> Option<&'v mut toml::Value> {
-    let mut here = value;
-    for part in field.split('.') {
-        let (key, indices) = part.split_once('[').unwrap_or((part, ""));
-        if !key.is_empty() {
-            here = here.get_mut(key)?;
-        }
-        for index in indices.split('[').filter(|i| !i.is_empty()) {
-            let i: usize = index.trim_end_matches(']').parse().ok()?;
-            here = here.get_mut(i)?;
-        }
-    }
-    Some(here)
-}
-
 /// The paths of every list of two or more `[x, y]` points in `value`.
 fn point_lists(value: &toml::Value) -> Vec<String> {
     fn walk(v: &toml::Value, path: String, out: &mut Vec<String>) {
@@ -420,11 +404,7 @@ fn point_lists(value: &toml::Value) -> Vec<String> {
 
 /// A point `[x, y]`.
 fn xy(v: &toml::Value) -> Option<[f64; 2]> {
-    let number = |v: &toml::Value| {
-        // Coordinates are far below 2⁵³.
-        #[allow(clippy::cast_precision_loss)]
-        v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
-    };
+    use crate::spec::field::number;
     match v.as_array()?.as_slice() {
         [x, y] => Some([number(x)?, number(y)?]),
         _ => None,
@@ -447,6 +427,7 @@ fn renamed(mut item: toml::Value, n: usize) -> toml::Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spec::field::number_at;
 
     #[test]
     fn names_round_trip_and_refusals_are_errors() {
@@ -501,21 +482,16 @@ mod tests {
                 .ranges()
                 .iter()
                 .filter(|r| {
-                    let mut v: toml::Value = toml::from_str(&text).unwrap();
-                    let mut b: toml::Value = toml::from_str(&base.to_toml()).unwrap();
-                    let now = at(&mut v, &r.field).and_then(|v| xy_number(v));
-                    let was = at(&mut b, &r.field).and_then(|v| xy_number(v));
+                    let v: toml::Value = toml::from_str(&text).unwrap();
+                    let b: toml::Value = toml::from_str(&base.to_toml()).unwrap();
+                    let now = number_at(&v, &r.field);
+                    let was = number_at(&b, &r.field);
                     now != was && (now == Some(r.lo) || now == Some(r.hi))
                 })
                 .count();
         }
         assert!(valid >= 30, "{valid} of 60 valid");
         assert!(at_limit >= 20, "{at_limit} fields moved to a limit");
-    }
-
-    fn xy_number(v: &toml::Value) -> Option<f64> {
-        #[allow(clippy::cast_precision_loss)]
-        v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
     }
 
     #[test]

@@ -77,6 +77,8 @@ pub mod project;
 mod rng;
 mod scene;
 pub mod spec;
+#[cfg(feature = "studio")]
+pub mod studio;
 pub mod templates;
 pub mod units;
 pub mod vine;

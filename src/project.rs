@@ -194,7 +194,7 @@ pub fn build_scene_with_progress(
     library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Scene> {
-    build(spec, library, progress)
+    build(spec, library, progress, Cancel::never())
         .map(|(scene, _, _)| scene)
         .map_err(|e| spec.locate(e))
 }
@@ -204,16 +204,18 @@ fn build(
     spec: &ValidSpec,
     library: &Library,
     progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
 ) -> Result<(Scene, Vec<Note>, Vec<Model>)> {
     let flow = Flow::new(&spec.lines);
     let ids = layer_ids(spec);
-    let mut cx = Context::new(spec, library, &flow, progress);
+    let mut cx = Context::new(spec, library, &flow, progress).with_cancel(cancel);
     let mut layers = Vec::with_capacity(spec.layers.len());
     for (index, (layer, id)) in spec.layers.iter().zip(&ids).enumerate() {
         let depth = layer.depth.unwrap_or(index as i32);
         cx.enter_layer((index, layer), id, depth);
         let mut content = Group::new(format!("{id}.motifs"));
         for item in layer.items() {
+            cancel.check()?;
             let group = motif::build(&item, &mut cx)?;
             let segments = group.segment_count();
             cx.budget()
@@ -314,8 +316,61 @@ pub fn render_with_progress(
     library: &Library,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Rendered> {
-    let (scene, notes, models) = build(spec, library, progress).map_err(|e| spec.locate(e))?;
+    render_cancellable(spec, library, progress, Cancel::never())
+}
+
+/// A flag another thread raises to call off a render (see
+/// [`render_cancellable`]).
+#[derive(Debug, Default)]
+pub struct Cancel(std::sync::atomic::AtomicBool);
+
+/// The flag of work that is never called off.
+static NEVER: Cancel = Cancel(std::sync::atomic::AtomicBool::new(false));
+
+impl Cancel {
+    /// A flag nobody raises (crate-only: raising it would call off every
+    /// render that uses it).
+    pub(crate) fn never() -> &'static Cancel {
+        &NEVER
+    }
+
+    /// Calls the work off.
+    pub fn raise(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// Whether the work was called off.
+    pub fn is_raised(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    /// [`Error::Cancelled`] once the work was called off.
+    pub(crate) fn check(&self) -> Result<()> {
+        if self.is_raised() {
+            Err(Error::Cancelled)
+        } else {
+            Ok(())
+        }
+    }
+}
+
+/// [`render_with_progress`] that stops with [`Error::Cancelled`] soon
+/// after `cancel` is raised: between tables, whenever a generator takes
+/// paths from the budget, and before the plot stages and the SVG.
+///
+/// # Errors
+/// As [`render_with_progress`], and [`Error::Cancelled`].
+pub fn render_cancellable(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
+) -> Result<Rendered> {
+    let (scene, notes, models) =
+        build(spec, library, progress, cancel).map_err(|e| spec.locate(e))?;
+    cancel.check()?;
     let scene = plot::run(scene, &spec.plot)?;
+    cancel.check()?;
     let options = svg_options(spec);
     let svg = to_svg(&scene, &options);
     Ok(Rendered {

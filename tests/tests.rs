@@ -18,5 +18,7 @@ mod readme;
 mod resource_bounds;
 mod safe_writes;
 mod snapshots;
+#[cfg(feature = "studio")]
+mod studio;
 mod valid_spec;
 mod vine_cli;

@@ -12,6 +12,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 mod fill;
 mod lsystem;
 mod plot;
+#[cfg(feature = "studio")]
+mod studio;
 
 use moyo::output::write_atomic;
 use moyo::project::{self, Progress};
@@ -53,6 +55,13 @@ enum Command {
     /// The turtle starts heading up the page; `+` turns left. The same
     /// table in a scene description (`[[layers.lsystem]]`) draws the same.
     Lsystem(lsystem::LSystemArgs),
+    /// Open the live design page in the browser: edit a description and
+    /// see the pattern change as you work.
+    ///
+    /// Serves on 127.0.0.1 and prints the address; reads and writes files
+    /// only in the current folder.
+    #[cfg(feature = "studio")]
+    Studio(studio::StudioArgs),
     /// Print a template's scene description to start a design from.
     New {
         /// Template name (see `moyo templates`).
@@ -120,6 +129,8 @@ pub(crate) fn run() -> ExitCode {
         Command::Stats(args) => plot::stats(&args),
         Command::Fill(args) => fill::fill(&args),
         Command::Lsystem(args) => lsystem::lsystem(&args),
+        #[cfg(feature = "studio")]
+        Command::Studio(args) => studio::studio(&args),
         Command::New { name, output } => new(&name, output.as_deref()),
     };
     match result {

@@ -60,6 +60,7 @@ pub struct Context<'a> {
     /// The field path of the table being built, below its layer.
     item: String,
     budget: PathBudget,
+    cancel: &'a crate::project::Cancel,
     adjust: Adjustments<'a>,
     progress: Progress,
     report: &'a mut dyn FnMut(Progress),
@@ -96,6 +97,7 @@ impl<'a> Context<'a> {
             layer: None,
             item: String::new(),
             budget: PathBudget::new(spec.limits.max_paths).with_segments(spec.limits.max_segments),
+            cancel: crate::project::Cancel::never(),
             adjust: Adjustments::new(&spec.adjust),
             progress: Progress { done: 0, total },
             report,
@@ -220,7 +222,15 @@ impl<'a> Context<'a> {
     /// # Errors
     /// [`crate::Error::Budget`] when the scene would exceed its limit.
     pub fn take_paths(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
+        // Generators take paths often and before their work: the place to
+        // notice that the render was called off.
+        self.cancel.check()?;
         self.budget.take(n, what)
+    }
+
+    /// The same context, called off when `cancel` is raised.
+    pub(crate) fn with_cancel(self, cancel: &'a crate::project::Cancel) -> Context<'a> {
+        Context { cancel, ..self }
     }
 
     /// The final adjustments by id.

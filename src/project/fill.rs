@@ -372,7 +372,7 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     if let Some(image) = &job.image {
         library.add_image(IMAGE, image.clone());
     }
-    let (mut built, notes, _) = build(&spec, &library, &mut |_| {})
+    let (mut built, notes, _) = build(&spec, &library, &mut |_| {}, super::Cancel::never())
         .map_err(|e| spec.locate(e))
         .map_err(by_option)?;
     // Black parts of a zentangle are hatched by its own pen, as in a

@@ -9,6 +9,7 @@
 //! Errors name the field path (`layers[0].trees[1].params.ratio1`), the
 //! allowed range, and — for TOML — the line and column of the value.
 
+pub mod field;
 mod flora;
 mod layer;
 mod locate;

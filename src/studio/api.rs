@@ -1,0 +1,442 @@
+//! The studio's HTTP API and the guard in front of it. Every answer about
+//! a description that does not work is 422 with the error as JSON
+//! (`{"error", "path", "line", "column"}`), worded as the command line
+//! words it; an edit that a newer one replaced is 409.
+
+use std::net::SocketAddr;
+use std::sync::Arc;
+
+use axum::body::Bytes;
+use axum::extract::{DefaultBodyLimit, Query, Request, State};
+use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, patch, post};
+use axum::{Json, Router};
+use serde::Deserialize;
+use serde_json::{json, Value};
+
+use super::edit::set_number;
+use super::session::{Good, Move, Session};
+use crate::error::Error;
+use crate::output::write_atomic;
+use crate::project::{plot_scene, PlotFormat, PlotJob};
+use crate::spec::field::number_at;
+
+/// The most bytes a request may send (a description, a field change).
+pub const MAX_BODY: usize = 4 * 1024 * 1024;
+
+/// The page, built in.
+const PAGE: &str = include_str!("page.html");
+
+#[derive(Clone)]
+struct App {
+    session: Arc<Session>,
+    /// `Host` values the studio answers to.
+    hosts: Arc<Vec<String>>,
+}
+
+/// The routes, behind the guard, for the studio listening on `addr`.
+pub(super) fn router(session: Arc<Session>, addr: SocketAddr) -> Router {
+    let port = addr.port();
+    let mut hosts = vec![addr.to_string()];
+    if addr.ip().is_loopback() {
+        hosts.extend([
+            format!("127.0.0.1:{port}"),
+            format!("localhost:{port}"),
+            format!("[::1]:{port}"),
+        ]);
+    }
+    let app = App {
+        session,
+        hosts: Arc::new(hosts),
+    };
+    Router::new()
+        .route("/", get(page))
+        .route("/api/scene", get(scene).put(put_scene))
+        .route("/api/svg", get(svg))
+        .route("/api/preview", get(preview))
+        .route("/api/state", get(state))
+        .route("/api/fields", get(fields))
+        .route("/api/field", patch(patch_field))
+        .route("/api/undo", post(undo))
+        .route("/api/redo", post(redo))
+        .route("/api/save", post(save))
+        .route("/api/open", post(open))
+        .route("/api/export", get(export))
+        .layer(DefaultBodyLimit::max(MAX_BODY))
+        .layer(middleware::from_fn_with_state(app.clone(), guard))
+        .with_state(app)
+}
+
+/// 403 for a request whose `Host` is not the studio's address, or whose
+/// `Origin` (sent by browsers) is not the studio's own page.
+async fn guard(State(app): State<App>, request: Request, next: Next) -> Response {
+    let headers = request.headers();
+    let host = headers.get(header::HOST).and_then(|h| h.to_str().ok());
+    if !host.is_some_and(|h| app.hosts.iter().any(|a| a == h)) {
+        return (
+            StatusCode::FORBIDDEN,
+            "forbidden: not this studio's address",
+        )
+            .into_response();
+    }
+    if let Some(origin) = headers.get(header::ORIGIN) {
+        let ok = origin.to_str().ok().is_some_and(|o| {
+            o.strip_prefix("http://")
+                .is_some_and(|h| app.hosts.iter().any(|a| a == h))
+        });
+        if !ok {
+            return (StatusCode::FORBIDDEN, "forbidden: not this studio's page").into_response();
+        }
+    }
+    next.run(request).await
+}
+
+async fn page() -> Response {
+    (
+        [
+            (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+            (header::CACHE_CONTROL, "no-store"),
+            (
+                header::CONTENT_SECURITY_POLICY,
+                "default-src 'self'; script-src 'self' 'unsafe-inline'; \
+                 style-src 'self' 'unsafe-inline'; img-src 'self' data: blob:",
+            ),
+        ],
+        PAGE,
+    )
+        .into_response()
+}
+
+/// The error as JSON, with the status it calls for.
+fn failure(e: &Error) -> Response {
+    let status = match e {
+        Error::Cancelled => StatusCode::CONFLICT,
+        _ => StatusCode::UNPROCESSABLE_ENTITY,
+    };
+    (status, Json(error_fields(e))).into_response()
+}
+
+fn svg_response(svg: &str, app: &App) -> Response {
+    let (undo, redo) = app.session.history();
+    let mut response = (
+        [(header::CONTENT_TYPE, "image/svg+xml; charset=utf-8")],
+        svg.to_string(),
+    )
+        .into_response();
+    let headers = response.headers_mut();
+    headers.insert("x-moyo-undo", HeaderValue::from(undo));
+    headers.insert("x-moyo-redo", HeaderValue::from(redo));
+    response
+}
+
+/// Renders `text` off the server's threads.
+async fn apply(app: &App, text: String, direction: Move) -> Result<Arc<Good>, Response> {
+    let session = Arc::clone(&app.session);
+    match tokio::task::spawn_blocking(move || session.apply(text, direction)).await {
+        Ok(Ok(good)) => Ok(good),
+        Ok(Err(e)) => Err(failure(&e)),
+        Err(e) => Err((
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("the render failed: {e}"),
+        )
+            .into_response()),
+    }
+}
+
+/// The design after a change the page did not write itself: its text,
+/// preview and history.
+fn changed(app: &App, good: &Good) -> Response {
+    let (undo, redo) = app.session.history();
+    Json(json!({
+        "scene": good.text,
+        "preview": good.preview,
+        "undo": undo,
+        "redo": redo,
+    }))
+    .into_response()
+}
+
+async fn scene(State(app): State<App>) -> Response {
+    (
+        [(header::CONTENT_TYPE, "application/toml; charset=utf-8")],
+        app.session.text(),
+    )
+        .into_response()
+}
+
+#[derive(Deserialize)]
+struct ViewQuery {
+    /// `preview` for the colour preview instead of the plot SVG.
+    view: Option<String>,
+}
+
+async fn put_scene(State(app): State<App>, Query(q): Query<ViewQuery>, body: Bytes) -> Response {
+    let text = match String::from_utf8(body.to_vec()) {
+        Ok(text) => text,
+        Err(e) => {
+            return failure(&Error::Parse {
+                at: None,
+                field: None,
+                message: format!("the description is not UTF-8 text: {}", e.utf8_error()),
+            })
+        }
+    };
+    match apply(&app, text, Move::Edit).await {
+        Ok(good) if q.view.as_deref() == Some("preview") => svg_response(&good.preview, &app),
+        Ok(good) => svg_response(&good.rendered.svg, &app),
+        Err(response) => response,
+    }
+}
+
+fn nothing_rendered() -> Response {
+    (
+        StatusCode::NOT_FOUND,
+        Json(json!({"error": "no description has rendered yet"})),
+    )
+        .into_response()
+}
+
+async fn svg(State(app): State<App>) -> Response {
+    match app.session.good() {
+        Some(good) => svg_response(&good.rendered.svg, &app),
+        None => nothing_rendered(),
+    }
+}
+
+async fn preview(State(app): State<App>) -> Response {
+    match app.session.good() {
+        Some(good) => svg_response(&good.preview, &app),
+        None => nothing_rendered(),
+    }
+}
+
+async fn state(State(app): State<App>) -> Response {
+    let (undo, redo) = app.session.history();
+    let text = app.session.text();
+    let good = app.session.good();
+    let current = good.as_ref().is_some_and(|g| g.text == text);
+    let error = if current {
+        Value::Null
+    } else {
+        // Say again what is wrong with the text as written.
+        match crate::spec::ValidSpec::parse(&text, crate::spec::Format::Toml) {
+            Ok(_) => Value::Null,
+            Err(e) => error_fields(&e),
+        }
+    };
+    Json(json!({
+        "undo": undo,
+        "redo": redo,
+        "rendered": current,
+        "error": error,
+        "folder": app.session.folder().root().display().to_string(),
+    }))
+    .into_response()
+}
+
+/// `{"error", "path", "line", "column"}` of an error; the message is the
+/// command line's, the rest is null where unknown.
+fn error_fields(e: &Error) -> Value {
+    let (at, field) = match e {
+        Error::Parse { at, field, .. } => (*at, field.clone()),
+        Error::Invalid { at, field, .. } => (*at, Some(field.clone())),
+        _ => (None, None),
+    };
+    json!({
+        "error": e.to_string(),
+        "path": field,
+        "line": at.map(|a| a.line),
+        "column": at.map(|a| a.column),
+    })
+}
+
+/// Every numeric field of the last good description with its range and
+/// value, for the page's form.
+async fn fields(State(app): State<App>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let value: toml::Value = match toml::from_str(&good.spec.to_toml()) {
+        Ok(v) => v,
+        Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    let list: Vec<Value> = good
+        .spec
+        .ranges()
+        .into_iter()
+        // A field checked twice (a margin on each side) is listed once.
+        .filter(|r| seen.insert(r.field.clone()))
+        .map(|r| {
+            let now = number_at(&value, &r.field);
+            json!({"field": r.field, "lo": r.lo, "hi": r.hi, "integer": r.integer, "value": now})
+        })
+        .collect();
+    Json(list).into_response()
+}
+
+#[derive(Deserialize)]
+struct FieldChange {
+    field: String,
+    value: f64,
+    #[serde(default)]
+    integer: bool,
+}
+
+async fn patch_field(State(app): State<App>, Json(change): Json<FieldChange>) -> Response {
+    let text = app.session.text();
+    let edited = match set_number(&text, &change.field, change.value, change.integer) {
+        Ok(t) => t,
+        Err(e) => return failure(&e),
+    };
+    match apply(&app, edited, Move::Edit).await {
+        Ok(good) => changed(&app, &good),
+        Err(response) => response,
+    }
+}
+
+async fn step(app: App, direction: Move) -> Response {
+    let Some(text) = app.session.step(direction) else {
+        let what = if direction == Move::Undo {
+            "undo"
+        } else {
+            "redo"
+        };
+        return (
+            StatusCode::CONFLICT,
+            Json(json!({"error": format!("nothing to {what}")})),
+        )
+            .into_response();
+    };
+    match apply(&app, text, direction).await {
+        Ok(good) => changed(&app, &good),
+        Err(response) => response,
+    }
+}
+
+async fn undo(State(app): State<App>) -> Response {
+    step(app, Move::Undo).await
+}
+
+async fn redo(State(app): State<App>) -> Response {
+    step(app, Move::Redo).await
+}
+
+#[derive(Deserialize)]
+struct FileRequest {
+    /// A path inside the studio's folder.
+    path: String,
+}
+
+/// Writes the description (`.toml`, as written) or the SVG (`.svg`, the
+/// last good render, with its description embedded).
+async fn save(State(app): State<App>, Json(request): Json<FileRequest>) -> Response {
+    let path = match app.session.folder().resolve(&request.path, "path") {
+        Ok(p) => p,
+        Err(e) => return failure(&e),
+    };
+    let bytes = if request.path.ends_with(".toml") {
+        app.session.text().into_bytes()
+    } else if request.path.ends_with(".svg") {
+        match app.session.good() {
+            Some(good) => good.rendered.svg.clone().into_bytes(),
+            None => return nothing_rendered(),
+        }
+    } else {
+        return failure(&Error::invalid("path", "save a .toml or an .svg file"));
+    };
+    match write_atomic(&path, &bytes) {
+        Ok(()) => Json(json!({"saved": request.path})).into_response(),
+        Err(e) => failure(&e),
+    }
+}
+
+/// Opens a description (`.toml`) or an SVG moyo wrote (its embedded
+/// description) from the folder, as a new edit.
+async fn open(State(app): State<App>, Json(request): Json<FileRequest>) -> Response {
+    let read = app
+        .session
+        .folder()
+        .resolve(&request.path, "path")
+        .and_then(|path| crate::input::read_text(&path).map_err(|e| Error::io(&path, e)));
+    let text = match read {
+        Ok(text) if request.path.ends_with(".svg") => {
+            match crate::scene::embedded_description(&text) {
+                Some(description) => description,
+                None => {
+                    return failure(&Error::invalid(
+                        "path",
+                        format!("{} carries no scene description", request.path),
+                    ))
+                }
+            }
+        }
+        Ok(text) => text,
+        Err(e) => return failure(&e),
+    };
+    match apply(&app, text, Move::Edit).await {
+        Ok(good) => changed(&app, &good),
+        Err(response) => response,
+    }
+}
+
+#[derive(Deserialize)]
+struct ExportQuery {
+    /// `png`, `gcode` or `hpgl`.
+    format: String,
+    /// PNG resolution (default 96).
+    dpi: Option<f64>,
+}
+
+/// The last good design as PNG, G-code or HPGL, through the same
+/// pipeline as the command line.
+async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let job = tokio::task::spawn_blocking(move || -> Result<(Vec<u8>, &str, &str), Error> {
+        match q.format.as_str() {
+            "png" => {
+                let dpi = q.dpi.unwrap_or(96.0);
+                if !(10.0..=600.0).contains(&dpi) {
+                    return Err(Error::invalid("dpi", format!("must be 10–600, got {dpi}")));
+                }
+                Ok((good.rendered.png(dpi)?, "image/png", "png"))
+            }
+            "gcode" | "hpgl" => {
+                let format = if q.format == "gcode" {
+                    PlotFormat::Gcode(Default::default())
+                } else {
+                    PlotFormat::Hpgl(Default::default())
+                };
+                let plotted = plot_scene(good.rendered.scene.clone(), &PlotJob::new(format))?;
+                let extension = if q.format == "gcode" { "gcode" } else { "hpgl" };
+                Ok((
+                    plotted.bytes.into_bytes(),
+                    "text/plain; charset=utf-8",
+                    extension,
+                ))
+            }
+            other => Err(Error::invalid(
+                "format",
+                format!("'{other}': export png, gcode or hpgl"),
+            )),
+        }
+    })
+    .await;
+    match job {
+        Ok(Ok((bytes, kind, extension))) => {
+            let disposition = format!("attachment; filename=\"moyo.{extension}\"");
+            let mut headers = HeaderMap::new();
+            headers.insert(header::CONTENT_TYPE, HeaderValue::from_static(kind));
+            if let Ok(v) = HeaderValue::from_str(&disposition) {
+                headers.insert(header::CONTENT_DISPOSITION, v);
+            }
+            (headers, bytes).into_response()
+        }
+        Ok(Err(e)) => failure(&e),
+        Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+    }
+}

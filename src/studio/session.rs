@@ -1,0 +1,197 @@
+//! The design being worked on: its description as the designer last
+//! wrote it (which may not be valid), the last render that worked, and
+//! the history for undo and redo. Renders run off the server's threads;
+//! each new edit calls off the render before it, so only the newest edit
+//! is ever waited for.
+
+use std::sync::{Arc, Mutex, MutexGuard};
+
+use super::folder::Folder;
+use crate::error::{Error, Result};
+use crate::project::{load_motifs_with, render_cancellable, Cancel, Rendered};
+use crate::spec::{Format, ValidSpec};
+
+/// Most undo steps kept.
+const HISTORY: usize = 200;
+
+/// A render that worked.
+pub(crate) struct Good {
+    /// The description it was made from.
+    pub text: String,
+    /// The description, validated.
+    pub spec: ValidSpec,
+    /// The scene and its SVG.
+    pub rendered: Rendered,
+    /// The colour preview SVG.
+    pub preview: String,
+}
+
+/// See the module docs.
+pub(crate) struct Session {
+    state: Mutex<State>,
+    /// The render under way, to call off when a newer edit comes.
+    running: Mutex<Arc<Cancel>>,
+    folder: Folder,
+}
+
+struct State {
+    text: String,
+    good: Option<Arc<Good>>,
+    undo: Vec<String>,
+    redo: Vec<String>,
+}
+
+/// Which way an edit moves through the history.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Move {
+    /// A new edit: the last good description goes on the undo stack.
+    Edit,
+    /// Back one step: the current description goes on the redo stack.
+    Undo,
+    /// Forward again.
+    Redo,
+}
+
+impl Session {
+    /// A session on `text`, reading files in `folder`.
+    pub(crate) fn new(text: String, folder: Folder) -> Session {
+        Session {
+            state: Mutex::new(State {
+                text,
+                good: None,
+                undo: Vec::new(),
+                redo: Vec::new(),
+            }),
+            running: Mutex::new(Arc::new(Cancel::default())),
+            folder,
+        }
+    }
+
+    /// The folder the session reads and writes in.
+    pub(crate) fn folder(&self) -> &Folder {
+        &self.folder
+    }
+
+    fn state(&self) -> MutexGuard<'_, State> {
+        // A panic while the lock was held cannot leave the state half
+        // changed (every change is one assignment), so a poisoned lock is
+        // still good to use.
+        self.state
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// The description as last written.
+    pub(crate) fn text(&self) -> String {
+        self.state().text.clone()
+    }
+
+    /// The last render that worked.
+    pub(crate) fn good(&self) -> Option<Arc<Good>> {
+        self.state().good.clone()
+    }
+
+    /// How many steps undo and redo can go.
+    pub(crate) fn history(&self) -> (usize, usize) {
+        let s = self.state();
+        (s.undo.len(), s.redo.len())
+    }
+
+    /// The description undo (or redo) would go to, if any.
+    pub(crate) fn step(&self, direction: Move) -> Option<String> {
+        let s = self.state();
+        match direction {
+            Move::Edit => None,
+            Move::Undo => s.undo.last().cloned(),
+            Move::Redo => s.redo.last().cloned(),
+        }
+    }
+
+    /// Renders `text` and, when it works and no newer edit came first,
+    /// makes it the design; when it does not, the text is kept (as the
+    /// designer wrote it) beside the last render that worked. Blocking:
+    /// call it off the server's threads.
+    ///
+    /// # Errors
+    /// The description's error, with its field and place, or
+    /// [`Error::Cancelled`] when a newer edit replaced this one.
+    pub(crate) fn apply(&self, text: String, direction: Move) -> Result<Arc<Good>> {
+        let cancel = Arc::new(Cancel::default());
+        {
+            let mut running = self
+                .running
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            running.raise();
+            *running = Arc::clone(&cancel);
+        }
+        let result = self.render(&text, &cancel);
+        let mut s = self.state();
+        if cancel.is_raised() {
+            return Err(Error::Cancelled);
+        }
+        match result {
+            Ok(good) => {
+                let good = Arc::new(good);
+                let previous = s.good.as_ref().map(|g| g.text.clone());
+                match direction {
+                    Move::Edit => {
+                        if let Some(previous) = previous.filter(|p| *p != text) {
+                            s.undo.push(previous);
+                            if s.undo.len() > HISTORY {
+                                s.undo.remove(0);
+                            }
+                            s.redo.clear();
+                        }
+                    }
+                    Move::Undo => {
+                        s.undo.pop();
+                        s.redo.extend(previous);
+                    }
+                    Move::Redo => {
+                        s.redo.pop();
+                        s.undo.extend(previous);
+                    }
+                }
+                s.text = text;
+                s.good = Some(Arc::clone(&good));
+                Ok(good)
+            }
+            Err(e) => {
+                s.text = text;
+                Err(e)
+            }
+        }
+    }
+
+    fn render(&self, text: &str, cancel: &Cancel) -> Result<Good> {
+        let spec = ValidSpec::parse(text, Format::Toml)?;
+        let library = load_motifs_with(&spec, &|name| match self.folder.resolve(name, name) {
+            Ok(path) => match crate::input::read_file(&path) {
+                // A template's own files (its images) are built in.
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                    match crate::templates::file(name) {
+                        Some(bytes) => (format!("built-in {name}"), Ok(bytes.to_vec())),
+                        None => (name.to_string(), Err(e)),
+                    }
+                }
+                read => (name.to_string(), read),
+            },
+            Err(e) => (
+                name.to_string(),
+                Err(std::io::Error::new(
+                    std::io::ErrorKind::PermissionDenied,
+                    e.to_string(),
+                )),
+            ),
+        })?;
+        let rendered = render_cancellable(&spec, &library, &mut |_| {}, cancel)?;
+        let preview = rendered.preview_svg();
+        Ok(Good {
+            text: text.to_string(),
+            spec,
+            rendered,
+            preview,
+        })
+    }
+}
