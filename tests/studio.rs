@@ -12,16 +12,16 @@ use moyo::studio::{Studio, StudioOptions, MAX_BODY};
 
 use crate::cli::tempdir;
 
-const SCENE: &str =
+pub(crate) const SCENE: &str =
     "version = 1\nseed = 3\n\n[page]\nsize = \"A5\"\n\n[[layers]]\nname = \"front\"\n\n\
                      [[layers.trees]]\nid = \"pine\"\nrule = \"tree1\"\ncount = 2   # two trees\n\
                      centre = [[20, 150], [120, 150]]\n";
 
 /// An answer: status, headers (lower-case names) and body.
-struct Answer {
-    status: u16,
+pub(crate) struct Answer {
+    pub(crate) status: u16,
     headers: Vec<(String, String)>,
-    body: Vec<u8>,
+    pub(crate) body: Vec<u8>,
 }
 
 impl Answer {
@@ -32,25 +32,46 @@ impl Answer {
             .map(|(_, v)| v.as_str())
     }
 
-    fn text(&self) -> String {
+    pub(crate) fn text(&self) -> String {
         String::from_utf8_lossy(&self.body).into_owned()
     }
 
-    fn json(&self) -> serde_json::Value {
+    pub(crate) fn json(&self) -> serde_json::Value {
         serde_json::from_slice(&self.body).unwrap_or_else(|e| panic!("{e}: {}", self.text()))
     }
 }
 
-/// Sends raw bytes and reads the whole answer (the request asks the
-/// server to close the connection after it).
-fn raw(addr: SocketAddr, request: &[u8]) -> Answer {
+/// Sends raw bytes and reads the whole answer: as long as its
+/// `Content-Length` says, or else until the server closes (the request
+/// asks it to; chromedriver says it will but does not).
+pub(crate) fn raw(addr: SocketAddr, request: &[u8]) -> Answer {
     let mut stream = TcpStream::connect(addr).unwrap();
     stream
         .set_read_timeout(Some(Duration::from_secs(120)))
         .unwrap();
     stream.write_all(request).unwrap();
     let mut bytes = Vec::new();
-    let _ = stream.read_to_end(&mut bytes);
+    let mut chunk = [0_u8; 64 * 1024];
+    let mut wanted: Option<usize> = None;
+    loop {
+        if let Some(split) = bytes.windows(4).position(|w| w == b"\r\n\r\n") {
+            if wanted.is_none() {
+                let head = String::from_utf8_lossy(&bytes[..split]).to_ascii_lowercase();
+                wanted = head
+                    .lines()
+                    .find_map(|l| l.strip_prefix("content-length:"))
+                    .and_then(|v| v.trim().parse::<usize>().ok())
+                    .map(|n| split + 4 + n);
+            }
+            if wanted.is_some_and(|n| bytes.len() >= n) {
+                break;
+            }
+        }
+        match stream.read(&mut chunk) {
+            Ok(0) | Err(_) => break,
+            Ok(n) => bytes.extend_from_slice(&chunk[..n]),
+        }
+    }
     let split = bytes
         .windows(4)
         .position(|w| w == b"\r\n\r\n")
@@ -98,7 +119,13 @@ fn dechunk(mut bytes: &[u8]) -> Vec<u8> {
 }
 
 /// A request to the studio at `addr`, with `extra` header lines.
-fn call(addr: SocketAddr, method: &str, path: &str, extra: &[&str], body: &[u8]) -> Answer {
+pub(crate) fn call(
+    addr: SocketAddr,
+    method: &str,
+    path: &str,
+    extra: &[&str],
+    body: &[u8],
+) -> Answer {
     let mut request = format!(
         "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n",
         body.len()
@@ -128,7 +155,7 @@ fn json(addr: SocketAddr, method: &str, path: &str, body: &serde_json::Value) ->
 }
 
 /// A studio on a free port in a new folder, started on `text`.
-fn studio(text: &str) -> (Studio, tempfile::TempDir) {
+pub(crate) fn studio(text: &str) -> (Studio, tempfile::TempDir) {
     let dir = tempdir();
     let studio = Studio::start(StudioOptions {
         folder: dir.path().to_path_buf(),

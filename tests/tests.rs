@@ -20,5 +20,7 @@ mod safe_writes;
 mod snapshots;
 #[cfg(feature = "studio")]
 mod studio;
+#[cfg(feature = "studio")]
+mod studio_browser;
 mod valid_spec;
 mod vine_cli;

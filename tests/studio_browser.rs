@@ -1,0 +1,299 @@
+//! The studio's page in a real browser: Debian's Chromium, driven through
+//! ChromeDriver's WebDriver protocol (plain HTTP and JSON, spoken here
+//! over the same small client as the API tests). A person's gestures —
+//! typing, changing a field, switching a pen off — and what the page
+//! shows after them.
+//!
+//! The tests run when `MOYO_CHROMEDRIVER` names a chromedriver and
+//! `MOYO_CHROMIUM` the browser (`.ci/run` installs both from Debian).
+//! Without them a test says so and passes, unless `CI` is set, where they
+//! are a failure.
+
+use std::net::{SocketAddr, TcpListener};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use serde_json::{json, Value};
+
+use crate::studio::{call, studio, SCENE};
+
+/// The key WebDriver gives an element reference under.
+const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
+
+/// A headless Chromium session (see the module docs).
+struct Browser {
+    driver: Child,
+    addr: SocketAddr,
+    session: String,
+    /// The browser's own profile, removed with it.
+    _profile: tempfile::TempDir,
+}
+
+impl Browser {
+    /// A new browser, or `None` (outside CI) when none is installed.
+    fn start() -> Option<Browser> {
+        let (Some(driver), Some(chromium)) = (
+            std::env::var_os("MOYO_CHROMEDRIVER"),
+            std::env::var_os("MOYO_CHROMIUM"),
+        ) else {
+            assert!(
+                std::env::var_os("CI").is_none(),
+                "MOYO_CHROMEDRIVER and MOYO_CHROMIUM are not set in CI; .ci/run installs them"
+            );
+            eprintln!("skipped: set MOYO_CHROMEDRIVER and MOYO_CHROMIUM to run the browser tests");
+            return None;
+        };
+        let port = TcpListener::bind("127.0.0.1:0")
+            .unwrap()
+            .local_addr()
+            .unwrap()
+            .port();
+        let child = Command::new(driver)
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("chromedriver starts");
+        let addr: SocketAddr = format!("127.0.0.1:{port}").parse().unwrap();
+        let profile = tempfile::tempdir().unwrap();
+        let user_data = format!("--user-data-dir={}", profile.path().display());
+        let mut browser = Browser {
+            driver: child,
+            addr,
+            session: String::new(),
+            _profile: profile,
+        };
+        browser.wait_until("chromedriver to start", || {
+            std::net::TcpStream::connect(addr).is_ok()
+        });
+        let created = browser.send(
+            "POST",
+            "/session",
+            &json!({"capabilities": {"alwaysMatch": {
+                "browserName": "chrome",
+                "goog:chromeOptions": {
+                    "binary": chromium.to_string_lossy(),
+                    "args": [
+                        "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                        "--no-first-run", "--disable-background-networking",
+                        "--disable-component-update", "--disable-sync",
+                        "--window-size=1400,900",
+                        user_data,
+                    ]
+                }
+            }}}),
+        );
+        browser.session = created["sessionId"].as_str().unwrap().to_string();
+        Some(browser)
+    }
+
+    /// A WebDriver command; its `value`.
+    fn send(&self, method: &str, path: &str, body: &Value) -> Value {
+        let body = if method == "GET" || method == "DELETE" {
+            Vec::new()
+        } else {
+            body.to_string().into_bytes()
+        };
+        let answer = call(
+            self.addr,
+            method,
+            path,
+            &["Content-Type: application/json; charset=utf-8"],
+            &body,
+        );
+        let reply = answer.json();
+        assert_eq!(answer.status, 200, "{method} {path}: {reply}");
+        reply["value"].clone()
+    }
+
+    fn command(&self, method: &str, what: &str, body: &Value) -> Value {
+        self.send(method, &format!("/session/{}{what}", self.session), body)
+    }
+
+    fn open(&self, url: &str) {
+        self.command("POST", "/url", &json!({ "url": url }));
+    }
+
+    /// Runs `script` in the page (`arguments[0]` … are `args`).
+    fn eval(&self, script: &str, args: &[Value]) -> Value {
+        self.command(
+            "POST",
+            "/execute/sync",
+            &json!({"script": script, "args": args}),
+        )
+    }
+
+    fn wait_until(&self, what: &str, mut done: impl FnMut() -> bool) {
+        let start = Instant::now();
+        while !done() {
+            assert!(
+                start.elapsed() < Duration::from_secs(60),
+                "gave up waiting for {what}"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    /// Waits until `script` returns something other than null or false,
+    /// and gives it.
+    fn wait_for(&self, what: &str, script: &str) -> Value {
+        let mut got = Value::Null;
+        self.wait_until(what, || {
+            got = self.eval(script, &[]);
+            !(got.is_null() || got == Value::Bool(false))
+        });
+        got
+    }
+
+    fn element(&self, css: &str) -> Value {
+        let found = self.command(
+            "POST",
+            "/element",
+            &json!({"using": "css selector", "value": css}),
+        );
+        found[ELEMENT].clone()
+    }
+
+    /// Clicks the element at `css`, as a person does.
+    fn click(&self, css: &str) {
+        let id = self.element(css);
+        self.command(
+            "POST",
+            &format!("/element/{}/click", id.as_str().unwrap()),
+            &json!({}),
+        );
+    }
+
+    /// Types `keys` into the element at `css`, as a person does.
+    fn type_into(&self, css: &str, keys: &str) {
+        let id = self.element(css);
+        self.command(
+            "POST",
+            &format!("/element/{}/value", id.as_str().unwrap()),
+            &json!({ "text": keys }),
+        );
+    }
+}
+
+impl Drop for Browser {
+    fn drop(&mut self) {
+        if !self.session.is_empty() {
+            let _ = call(
+                self.addr,
+                "DELETE",
+                &format!("/session/{}", self.session),
+                &[],
+                b"",
+            );
+        }
+        let _ = self.driver.kill();
+        let _ = self.driver.wait();
+    }
+}
+
+/// The preview's SVG as the page shows it.
+const PREVIEW: &str = "const s = document.querySelector('#preview svg'); return s && s.outerHTML;";
+
+#[test]
+fn a_field_changed_in_the_form_redraws_the_preview_and_the_text() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let (studio, _dir) = studio(SCENE);
+    browser.open(&studio.url());
+    browser.wait_for("the first preview", PREVIEW);
+    let before = browser.eval(PREVIEW, &[]);
+    browser.wait_for(
+        "the form",
+        "return document.querySelector('input[type=number][data-field=\"layers[0].trees[0].count\"]');",
+    );
+    // Select the count, type a new one and leave the field, as a person
+    // does: Ctrl+A, 3, Tab.
+    let field = "input[type=number][data-field=\"layers[0].trees[0].count\"]";
+    browser.type_into(field, "\u{E009}a\u{E000}3\u{E004}");
+    let text = browser.wait_for(
+        "the text to change",
+        "const t = document.getElementById('text').value; return t.includes('count = 3   # two trees') && t;",
+    );
+    assert!(text.as_str().unwrap().contains("seed = 3"));
+    browser.wait_for(
+        "a new preview",
+        &format!(
+            "const s = document.querySelector('#preview svg'); return s && s.outerHTML !== {};",
+            json!(before)
+        ),
+    );
+    // Three trees now, where there were two.
+    let trees = "return [...document.querySelectorAll('#preview g')].filter(g => /^front\\.pine\\.tree-\\d+$/.test(g.id)).length;";
+    assert_eq!(browser.eval(trees, &[]), json!(3));
+    // The history: undo is possible now, and takes the change back.
+    browser.click("#undo");
+    browser.wait_for(
+        "undo",
+        "return document.getElementById('text').value.includes('count = 2   # two trees');",
+    );
+    studio.stop();
+}
+
+#[test]
+fn an_invalid_edit_shows_its_error_and_keeps_the_last_good_preview() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let (studio, _dir) = studio(SCENE);
+    browser.open(&studio.url());
+    let before = browser.wait_for("the first preview", PREVIEW);
+    // A count out of range, typed at the end of the text.
+    browser.eval(
+        "const t = document.getElementById('text'); t.focus(); t.setSelectionRange(t.value.length, t.value.length);",
+        &[],
+    );
+    browser.type_into("#text", "rotate = 999\n");
+    let error = browser.wait_for(
+        "the error",
+        "const e = document.getElementById('error'); return e.classList.contains('shown') && e.textContent;",
+    );
+    let error = error.as_str().unwrap();
+    assert!(
+        error.contains("layers[0].trees[0].rotate") && error.contains("-360"),
+        "{error}"
+    );
+    assert!(error.starts_with("15:10: "), "{error}");
+    // The last good preview stays, marked stale.
+    assert_eq!(browser.eval(PREVIEW, &[]), before);
+    assert_eq!(
+        browser.eval(
+            "return document.getElementById('preview').classList.contains('stale');",
+            &[]
+        ),
+        json!(true)
+    );
+    // Clicking the error puts the caret at its place.
+    browser.click("#error");
+    let caret = browser.eval(
+        "const t = document.getElementById('text'); return t.value.slice(0, t.selectionStart).split('\\n').length;",
+        &[],
+    );
+    assert_eq!(caret, json!(15));
+    studio.stop();
+}
+
+#[test]
+fn a_pen_switched_off_is_hidden_in_the_preview() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let (studio, _dir) = studio(SCENE);
+    browser.open(&studio.url());
+    browser.wait_for(
+        "the pens",
+        "return document.querySelector('#layers input');",
+    );
+    let shown = "return [...document.querySelectorAll('#preview svg > g')].filter(g => g.style.display !== 'none').length;";
+    let all = browser.eval(shown, &[]).as_u64().unwrap();
+    browser.click("#layers input");
+    assert_eq!(browser.eval(shown, &[]).as_u64().unwrap(), all - 1);
+    browser.click("#layers input");
+    assert_eq!(browser.eval(shown, &[]).as_u64().unwrap(), all);
+    studio.stop();
+}
