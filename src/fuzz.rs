@@ -30,7 +30,7 @@ use crate::plot::{HatchOptions, MergeOptions, OccludeOptions, PlotOptions, SortO
 use crate::project::{self, plot_scene, PlotFormat, PlotJob};
 use crate::rng::Seed;
 use crate::scene::embedded_description;
-use crate::spec::field::value_at_mut as at;
+use crate::spec::field::{point_lists, value_at_mut as at, xy};
 use crate::spec::{Format, SceneSpec};
 use crate::vine::TriMesh;
 
@@ -371,46 +371,6 @@ fn extreme(u: &mut Unstructured<'_>, lo: f64, hi: f64) -> arbitrary::Result<f64>
     })
 }
 
-/// The paths of every list of two or more `[x, y]` points in `value`.
-fn point_lists(value: &toml::Value) -> Vec<String> {
-    fn walk(v: &toml::Value, path: String, out: &mut Vec<String>) {
-        match v {
-            toml::Value::Table(t) => {
-                for (k, v) in t {
-                    let next = if path.is_empty() {
-                        k.clone()
-                    } else {
-                        format!("{path}.{k}")
-                    };
-                    walk(v, next, out);
-                }
-            }
-            toml::Value::Array(a) => {
-                if a.len() >= 2 && a.iter().all(|p| xy(p).is_some()) {
-                    out.push(path);
-                } else {
-                    for (i, v) in a.iter().enumerate() {
-                        walk(v, format!("{path}[{i}]"), out);
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    let mut out = Vec::new();
-    walk(value, String::new(), &mut out);
-    out
-}
-
-/// A point `[x, y]`.
-fn xy(v: &toml::Value) -> Option<[f64; 2]> {
-    use crate::spec::field::number;
-    match v.as_array()?.as_slice() {
-        [x, y] => Some([number(x)?, number(y)?]),
-        _ => None,
-    }
-}
-
 fn pair(x: f64, y: f64) -> toml::Value {
     toml::Value::Array(vec![toml::Value::Float(x), toml::Value::Float(y)])
 }
@@ -492,19 +452,6 @@ mod tests {
         }
         assert!(valid >= 30, "{valid} of 60 valid");
         assert!(at_limit >= 20, "{at_limit} fields moved to a limit");
-    }
-
-    #[test]
-    fn field_paths_reach_into_tables_and_lists() {
-        let mut v: toml::Value =
-            toml::from_str("a = [{ b = [[1, 2], [3, 4]] }]\nc = { d = 5 }").unwrap();
-        assert_eq!(
-            at(&mut v, "a[0].b[1][0]").and_then(|v| v.as_integer()),
-            Some(3)
-        );
-        assert_eq!(at(&mut v, "c.d").and_then(|v| v.as_integer()), Some(5));
-        assert!(at(&mut v, "a[3].b").is_none() && at(&mut v, "c.e").is_none());
-        assert_eq!(point_lists(&v), vec!["a[0].b".to_string()]);
     }
 
     #[test]

@@ -297,6 +297,55 @@ fn fields_come_with_their_ranges_and_change_in_place() {
 }
 
 #[test]
+fn lines_of_points_are_handles_and_a_point_moves_as_one_edit() {
+    let text = SCENE.replace(
+        "[[layers]]",
+        "[lines]\nupper = [[0, 40], [128, 30]]\n\n[[layers]]",
+    );
+    let (studio, _dir) = studio(&text);
+    let addr = studio.addr();
+    let handles = get(addr, "/api/handles").json();
+    assert_eq!(handles["offset"], serde_json::json!([10.0, 10.0]));
+    let fields: Vec<&str> = handles["lines"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["field"].as_str().unwrap())
+        .collect();
+    assert_eq!(fields, ["layers[0].trees[0].centre", "lines.upper"]);
+    assert_eq!(
+        handles["lines"][0]["points"],
+        serde_json::json!([[20.0, 150.0], [120.0, 150.0]])
+    );
+    // Both coordinates of a dragged point: one edit, one step of undo.
+    let moved = json(
+        addr,
+        "PATCH",
+        "/api/fields",
+        &serde_json::json!({"changes": [
+            {"field": "layers[0].trees[0].centre[0][0]", "value": 35.5},
+            {"field": "layers[0].trees[0].centre[0][1]", "value": 140},
+        ]}),
+    );
+    assert_eq!(moved.status, 200, "{}", moved.text());
+    let d = moved.json();
+    assert!(
+        d["scene"]
+            .as_str()
+            .unwrap()
+            .contains("centre = [[35.5, 140.0], [120, 150]]"),
+        "{d}"
+    );
+    assert_eq!(d["undo"], 1);
+    let handles = get(addr, "/api/handles").json();
+    assert_eq!(
+        handles["lines"][0]["points"][0],
+        serde_json::json!([35.5, 140.0])
+    );
+    studio.stop();
+}
+
+#[test]
 fn undo_and_redo_walk_the_good_descriptions() {
     let (studio, _dir) = studio(SCENE);
     let addr = studio.addr();

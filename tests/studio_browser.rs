@@ -164,6 +164,29 @@ impl Browser {
         );
     }
 
+    /// Presses the mouse on the element at `css`, moves it by `dx`, `dy`
+    /// CSS pixels in steps, and lets go.
+    fn drag(&self, css: &str, dx: i64, dy: i64) {
+        let id = self.element(css);
+        let mut steps = vec![
+            json!({"type": "pointerMove", "origin": {ELEMENT: id}, "x": 0, "y": 0}),
+            json!({"type": "pointerDown", "button": 0}),
+        ];
+        for _ in 0..6 {
+            steps.push(json!({"type": "pointerMove", "origin": "pointer", "x": dx / 6, "y": dy / 6, "duration": 40}));
+        }
+        steps.push(json!({"type": "pointerUp", "button": 0}));
+        self.command(
+            "POST",
+            "/actions",
+            &json!({"actions": [{
+                "type": "pointer", "id": "mouse",
+                "parameters": {"pointerType": "mouse"},
+                "actions": steps,
+            }]}),
+        );
+    }
+
     /// Types `keys` into the element at `css`, as a person does.
     fn type_into(&self, css: &str, keys: &str) {
         let id = self.element(css);
@@ -191,8 +214,11 @@ impl Drop for Browser {
     }
 }
 
-/// The preview's SVG as the page shows it.
-const PREVIEW: &str = "const s = document.querySelector('#preview svg'); return s && s.outerHTML;";
+/// The preview's SVG as the page shows it, without the handles drawn
+/// over it.
+const PREVIEW: &str = "const s = document.querySelector('#preview svg'); if (!s) return null; \
+    const c = s.cloneNode(true); const h = c.querySelector('#studio-handles'); if (h) h.remove(); \
+    return c.outerHTML;";
 
 #[test]
 fn a_field_changed_in_the_form_redraws_the_preview_and_the_text() {
@@ -218,10 +244,7 @@ fn a_field_changed_in_the_form_redraws_the_preview_and_the_text() {
     assert!(text.as_str().unwrap().contains("seed = 3"));
     browser.wait_for(
         "a new preview",
-        &format!(
-            "const s = document.querySelector('#preview svg'); return s && s.outerHTML !== {};",
-            json!(before)
-        ),
+        &format!("return (() => {{ {PREVIEW} }})() !== {};", json!(before)),
     );
     // Three trees now, where there were two.
     let trees = "return [...document.querySelectorAll('#preview g')].filter(g => /^front\\.pine\\.tree-\\d+$/.test(g.id)).length;";
@@ -275,6 +298,43 @@ fn an_invalid_edit_shows_its_error_and_keeps_the_last_good_preview() {
         &[],
     );
     assert_eq!(caret, json!(15));
+    studio.stop();
+}
+
+#[test]
+fn dragging_a_point_of_a_centre_line_moves_the_trees() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let (studio, _dir) = studio(SCENE);
+    browser.open(&studio.url());
+    let handle = "circle.studio-handle[data-field=\"layers[0].trees[0].centre[0]\"]";
+    browser.wait_for(
+        "the handles",
+        &format!("return document.querySelector({});", json!(handle)),
+    );
+    let tree = "const t = document.getElementById('front.pine.tree-0'); return t && t.getBoundingClientRect().x;";
+    let before = browser.eval(tree, &[]).as_f64().unwrap();
+    // Drag the first point of the centre line to the right.
+    browser.drag(handle, 120, 0);
+    let x = browser.wait_for(
+        "the text to follow the drag",
+        "const m = document.getElementById('text').value.match(/centre = \\[\\[([-\\d.]+), ([-\\d.]+)\\]/); \
+         return m && +m[1] !== 20 && [+m[1], +m[2]];",
+    );
+    let (x, y) = (x[0].as_f64().unwrap(), x[1].as_f64().unwrap());
+    assert!(x > 30.0, "{x}");
+    assert!((y - 150.0).abs() < 2.0, "{y}");
+    // The first tree stands where the line now starts.
+    browser.wait_for(
+        "the tree to move",
+        &format!("const t = document.getElementById('front.pine.tree-0'); return t && t.getBoundingClientRect().x > {} + 5;", before),
+    );
+    // The drag is one edit per step sent, and undo goes back.
+    assert_eq!(
+        browser.eval("return document.getElementById('undo').disabled;", &[]),
+        json!(false)
+    );
     studio.stop();
 }
 

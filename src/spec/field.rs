@@ -53,8 +53,8 @@ pub fn value_at_mut<'v>(value: &'v mut toml::Value, field: &str) -> Option<&'v m
     Some(here)
 }
 
-/// The number at `field`, if there is one.
-pub fn number_at(value: &toml::Value, field: &str) -> Option<f64> {
+/// The value at `field`, if there is one.
+pub fn value_at<'v>(value: &'v toml::Value, field: &str) -> Option<&'v toml::Value> {
     let mut here = value;
     for step in steps(field)? {
         here = match step {
@@ -62,7 +62,12 @@ pub fn number_at(value: &toml::Value, field: &str) -> Option<f64> {
             Step::Index(i) => here.get(i)?,
         };
     }
-    number(here)
+    Some(here)
+}
+
+/// The number at `field`, if there is one.
+pub fn number_at(value: &toml::Value, field: &str) -> Option<f64> {
+    number(value_at(value, field)?)
 }
 
 /// `value` as a number, whether written as an integer or a float.
@@ -74,9 +79,57 @@ pub fn number(value: &toml::Value) -> Option<f64> {
         .or_else(|| value.as_integer().map(|i| i as f64))
 }
 
+/// The paths of every list of two or more `[x, y]` points in `value`,
+/// tables' keys in alphabetical order.
+pub fn point_lists(value: &toml::Value) -> Vec<String> {
+    fn walk(v: &toml::Value, path: String, out: &mut Vec<String>) {
+        match v {
+            toml::Value::Table(t) => {
+                for (k, v) in t {
+                    let next = if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    };
+                    walk(v, next, out);
+                }
+            }
+            toml::Value::Array(a) => {
+                if a.len() >= 2 && a.iter().all(|p| xy(p).is_some()) {
+                    out.push(path);
+                } else {
+                    for (i, v) in a.iter().enumerate() {
+                        walk(v, format!("{path}[{i}]"), out);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    walk(value, String::new(), &mut out);
+    out
+}
+
+/// A point `[x, y]`.
+pub fn xy(value: &toml::Value) -> Option<[f64; 2]> {
+    match value.as_array()?.as_slice() {
+        [x, y] => Some([number(x)?, number(y)?]),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lines_of_points_are_found_by_their_paths() {
+        let v: toml::Value =
+            toml::from_str("a = [{ b = [[1, 2], [3, 4.5]] }]\nc = { d = [[5, 6]] }").unwrap();
+        assert_eq!(point_lists(&v), vec!["a[0].b".to_string()]);
+        assert_eq!(xy(&v["a"][0]["b"][1]), Some([3.0, 4.5]));
+    }
 
     #[test]
     fn paths_reach_into_tables_and_lists() {

@@ -21,7 +21,7 @@ use super::session::{Good, Move, Session};
 use crate::error::Error;
 use crate::output::write_atomic;
 use crate::project::{plot_scene, PlotFormat, PlotJob};
-use crate::spec::field::number_at;
+use crate::spec::field::{number_at, point_lists, value_at, xy};
 
 /// The most bytes a request may send (a description, a field change).
 pub const MAX_BODY: usize = 4 * 1024 * 1024;
@@ -59,6 +59,8 @@ pub(super) fn router(session: Arc<Session>, addr: SocketAddr) -> Router {
         .route("/api/state", get(state))
         .route("/api/fields", get(fields))
         .route("/api/field", patch(patch_field))
+        .route("/api/fields", patch(patch_fields))
+        .route("/api/handles", get(handles))
         .route("/api/undo", post(undo))
         .route("/api/redo", post(redo))
         .route("/api/save", post(save))
@@ -258,10 +260,7 @@ async fn fields(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let value: toml::Value = match toml::from_str(&good.spec.to_toml()) {
-        Ok(v) => v,
-        Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
-    };
+    let value = &good.value;
     let mut seen = std::collections::BTreeSet::new();
     let list: Vec<Value> = good
         .spec
@@ -270,7 +269,7 @@ async fn fields(State(app): State<App>) -> Response {
         // A field checked twice (a margin on each side) is listed once.
         .filter(|r| seen.insert(r.field.clone()))
         .map(|r| {
-            let now = number_at(&value, &r.field);
+            let now = number_at(value, &r.field);
             json!({"field": r.field, "lo": r.lo, "hi": r.hi, "integer": r.integer, "value": now})
         })
         .collect();
@@ -286,15 +285,67 @@ struct FieldChange {
 }
 
 async fn patch_field(State(app): State<App>, Json(change): Json<FieldChange>) -> Response {
-    let text = app.session.text();
-    let edited = match set_number(&text, &change.field, change.value, change.integer) {
-        Ok(t) => t,
-        Err(e) => return failure(&e),
-    };
-    match apply(&app, edited, Move::Edit).await {
-        Ok(good) => changed(&app, &good),
+    edit_fields(&app, &[change]).await
+}
+
+#[derive(Deserialize)]
+struct FieldChanges {
+    changes: Vec<FieldChange>,
+}
+
+/// Several numbers changed as one edit (both coordinates of a dragged
+/// point).
+async fn patch_fields(State(app): State<App>, Json(request): Json<FieldChanges>) -> Response {
+    edit_fields(&app, &request.changes).await
+}
+
+async fn edit_fields(app: &App, changes: &[FieldChange]) -> Response {
+    let mut text = app.session.text();
+    for change in changes {
+        text = match set_number(&text, &change.field, change.value, change.integer) {
+            Ok(t) => t,
+            Err(e) => return failure(&e),
+        };
+    }
+    match apply(app, text, Move::Edit).await {
+        Ok(good) => changed(app, &good),
         Err(response) => response,
     }
+}
+
+/// The keys whose lists of points are places on the page (millimetres
+/// inside the margins): the flow and region lines, tree centre lines,
+/// strokes, guides, polygons and zentangle strings. Other lists of pairs
+/// (a Tree8 base curve, in trunk lengths) are not.
+const PLACES: [&str; 8] = [
+    "upper", "lower", "centre", "at", "along", "points", "polygon", "lines",
+];
+
+/// Every line of points on the page the designer can drag, with the
+/// offset of the area inside the margins.
+async fn handles(State(app): State<App>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let value = &good.value;
+    let lines: Vec<Value> = point_lists(value)
+        .into_iter()
+        .filter(|field| {
+            let last = field.rsplit('.').next().unwrap_or(field);
+            let key = last.split('[').next().unwrap_or(last);
+            PLACES.contains(&key)
+        })
+        .filter_map(|field| {
+            let points: Vec<[f64; 2]> = value_at(value, &field)?
+                .as_array()?
+                .iter()
+                .filter_map(xy)
+                .collect();
+            Some(json!({"field": field, "points": points}))
+        })
+        .collect();
+    let margins = good.spec.page().margins;
+    Json(json!({"offset": [margins.left, margins.top], "lines": lines})).into_response()
 }
 
 async fn step(app: App, direction: Move) -> Response {

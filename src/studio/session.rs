@@ -24,6 +24,9 @@ pub(crate) struct Good {
     pub rendered: Rendered,
     /// The colour preview SVG.
     pub preview: String,
+    /// The description as a TOML value, every default written out: what
+    /// the form and the handles read their numbers from.
+    pub value: toml::Value,
 }
 
 /// See the module docs.
@@ -187,11 +190,15 @@ impl Session {
         })?;
         let rendered = render_cancellable(&spec, &library, &mut |_| {}, cancel)?;
         let preview = rendered.preview_svg();
+        // Written by moyo a moment ago, so it reads back.
+        let value = toml::from_str(&spec.to_toml())
+            .unwrap_or_else(|_| toml::Value::Table(toml::Table::new()));
         Ok(Good {
             text: text.to_string(),
             spec,
             rendered,
             preview,
+            value,
         })
     }
 }
