@@ -266,12 +266,15 @@ fn an_invalid_edit_shows_its_error_and_keeps_the_last_good_preview() {
     let (studio, _dir) = studio(SCENE);
     browser.open(&studio.url());
     let before = browser.wait_for("the first preview", PREVIEW);
-    // A count out of range, typed at the end of the text.
+    // A rotation out of range, typed on a new last line: the number
+    // first, then Home and the key, so that no prefix of the line is a
+    // valid description (a render between keystrokes would change the
+    // preview this test expects to stay).
     browser.eval(
         "const t = document.getElementById('text'); t.focus(); t.setSelectionRange(t.value.length, t.value.length);",
         &[],
     );
-    browser.type_into("#text", "rotate = 999\n");
+    browser.type_into("#text", "999\u{E011}rotate = ");
     let error = browser.wait_for(
         "the error",
         "const e = document.getElementById('error'); return e.classList.contains('shown') && e.textContent;",
@@ -349,7 +352,9 @@ fn a_pen_switched_off_is_hidden_in_the_preview() {
         "the pens",
         "return document.querySelector('#layers input');",
     );
-    let shown = "return [...document.querySelectorAll('#preview svg > g')].filter(g => g.style.display !== 'none').length;";
+    // Pen layers only: the handles drawn over the preview are not one.
+    let shown = "return [...document.querySelectorAll('#preview svg > g')].filter(g => \
+        g.getAttribute('inkscape:groupmode') === 'layer' && g.style.display !== 'none').length;";
     let all = browser.eval(shown, &[]).as_u64().unwrap();
     browser.click("#layers input");
     assert_eq!(browser.eval(shown, &[]).as_u64().unwrap(), all - 1);
