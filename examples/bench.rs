@@ -49,7 +49,7 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use kurbo::{PathEl, Point};
-use moyo::output::{render_png, to_svg, write_number};
+use moyo::output::{grouped, render_png, to_svg, write_number};
 use moyo::project::{build_scene, render, svg_options};
 use moyo::spec::{Format, SceneSpec};
 use moyo::templates;
@@ -201,19 +201,6 @@ fn us(v: f64) -> String {
     } else {
         format!("{v:.1}")
     }
-}
-
-/// Thousands separated by commas.
-fn grouped(n: usize) -> String {
-    let s = n.to_string();
-    let mut out = String::new();
-    for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 fn default_design(cfg: &Config) -> Result<(), moyo::Error> {

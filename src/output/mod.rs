@@ -33,7 +33,7 @@ mod svg;
 pub use animate::{animated_svg, FRAME_SECONDS};
 pub use atomic::write_atomic;
 pub use dump::path_dump;
-pub use number::write_number;
+pub use number::{grouped, write_number};
 pub use obj::to_obj;
 pub use preview::{check_dpi, render_png};
 pub use svg::{to_svg, SvgOptions};

@@ -1,4 +1,5 @@
-//! The one number formatter of every text output (SVG, path dump).
+//! The one number formatter of every text output (SVG, path dump), and
+//! whole numbers grouped by thousands for messages to people.
 //!
 //! Numbers are rounded to a fixed number of decimals and then made compact:
 //! trailing zeros and a trailing `.` go, and a negative zero becomes `0`.
@@ -43,6 +44,20 @@ pub fn write_number(out: &mut String, v: f64, precision: u8) {
         out.truncate(start);
         out.push('0');
     }
+}
+
+/// `n` with its thousands separated by commas, for messages and reports:
+/// `10000000` is `10,000,000`.
+pub fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -97,5 +112,13 @@ mod tests {
     fn non_finite_writes_zero() {
         assert_eq!(num(f64::NAN, 3), "0");
         assert_eq!(num(f64::INFINITY, 3), "0");
+    }
+
+    #[test]
+    fn whole_numbers_are_grouped_by_thousands() {
+        assert_eq!(grouped(10_000_000), "10,000,000");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(1000), "1,000");
+        assert_eq!(grouped(0), "0");
     }
 }

@@ -14,10 +14,32 @@ use crate::error::{Error, Result};
 /// `limits.max_segments`.
 #[derive(Debug, Clone)]
 pub struct PathBudget {
+    paths: Count,
+    segments: Count,
+}
+
+/// One count against its limit.
+#[derive(Debug, Clone, Copy)]
+struct Count {
     limit: usize,
     used: usize,
-    segment_limit: usize,
-    segments: usize,
+}
+
+impl Count {
+    fn new(limit: usize) -> Count {
+        Count { limit, used: 0 }
+    }
+
+    /// Takes `n`, or leaves the count as it is and says no when that
+    /// would pass the limit.
+    fn take(&mut self, n: usize) -> bool {
+        let next = self.used.saturating_add(n);
+        let fits = next <= self.limit;
+        if fits {
+            self.used = next;
+        }
+        fits
+    }
 }
 
 impl PathBudget {
@@ -32,10 +54,8 @@ impl PathBudget {
     /// A budget of `limit` paths and the default number of segments.
     pub fn new(limit: usize) -> PathBudget {
         PathBudget {
-            limit,
-            used: 0,
-            segment_limit: PathBudget::DEFAULT_SEGMENT_LIMIT,
-            segments: 0,
+            paths: Count::new(limit),
+            segments: Count::new(PathBudget::DEFAULT_SEGMENT_LIMIT),
         }
     }
 
@@ -43,45 +63,43 @@ impl PathBudget {
     #[must_use]
     pub fn with_segments(self, limit: usize) -> PathBudget {
         PathBudget {
-            segment_limit: limit,
+            segments: Count::new(limit),
             ..self
         }
     }
 
     /// Takes `n` paths for `what`; fails when the limit would be passed.
     pub fn take(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
-        let next = self.used.saturating_add(n);
-        if next > self.limit {
-            return Err(Error::Budget {
-                limit: self.limit,
+        if self.paths.take(n) {
+            Ok(())
+        } else {
+            Err(Error::Budget {
+                limit: self.paths.limit,
                 what: what(),
-            });
+            })
         }
-        self.used = next;
-        Ok(())
     }
 
     /// Paths taken so far.
     pub fn used(&self) -> usize {
-        self.used
+        self.paths.used
     }
 
     /// Takes `n` segments for `what`; fails when the limit would be passed.
     pub fn take_segments(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
-        let next = self.segments.saturating_add(n);
-        if next > self.segment_limit {
-            return Err(Error::SegmentBudget {
-                limit: self.segment_limit,
+        if self.segments.take(n) {
+            Ok(())
+        } else {
+            Err(Error::SegmentBudget {
+                limit: self.segments.limit,
                 what: what(),
-            });
+            })
         }
-        self.segments = next;
-        Ok(())
     }
 
     /// Segments that may still be made.
     pub fn segments_left(&self) -> usize {
-        self.segment_limit - self.segments
+        self.segments.limit - self.segments.used
     }
 }
 

@@ -141,7 +141,7 @@ impl Walker<'_> {
                 "svg",
                 format!(
                     "the paths hold more than {} segments in all, the most moyo imports",
-                    grouped(self.max_segments)
+                    crate::output::grouped(self.max_segments)
                 ),
             ));
         }
@@ -272,19 +272,6 @@ fn paint_color(paint: &usvg::Paint) -> Color {
     Color::rgb(c.red, c.green, c.blue)
 }
 
-/// `n` with its thousands grouped: 10,000,000.
-fn grouped(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::test_support::{assert_rect_near, doc, import, near, only_path, paths};
@@ -304,8 +291,6 @@ mod tests {
         assert_eq!(walked.drawn.len(), 2);
         let e = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 7).unwrap_err();
         assert!(e.to_string().contains("more than 7 segments"), "{e}");
-        assert_eq!(super::grouped(10_000_000), "10,000,000");
-        assert_eq!(super::grouped(999), "999");
     }
 
     #[test]
