@@ -362,3 +362,96 @@ fn a_pen_switched_off_is_hidden_in_the_preview() {
     assert_eq!(browser.eval(shown, &[]).as_u64().unwrap(), all);
     studio.stop();
 }
+
+#[test]
+fn a_stroke_drawn_with_a_pen_grows_the_sketch_while_the_pen_is_down() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let text = moyo::templates::get("lsystem-sketch-s").unwrap().text;
+    let (studio, _dir) = studio(text);
+    browser.open(&studio.url());
+    let before = browser.wait_for("the first preview", PREVIEW);
+    browser.wait_for(
+        "the sketches to draw into",
+        "return document.getElementById('pen-target').value === 'layers[0].lsystem[0]';",
+    );
+    browser.click("input[name=tool][value=pen]");
+    let svg = browser.element("#preview svg");
+    let steps =
+        "const g = document.getElementById('studio-sketch'); return g ? +g.dataset.steps : -1;";
+    // The pen goes down low on the page and moves up it; the action
+    // ends with the pen still down.
+    let moves = |from: i64, count: usize| -> Vec<Value> {
+        let mut list = Vec::new();
+        for i in 0..count {
+            let k = from + i as i64;
+            let x = (30.0 * (k as f64 / 6.0).sin()) as i64;
+            list.push(json!({"type": "pointerMove", "origin": {ELEMENT: svg.clone()}, "x": x, "y": 300 - 12 * k, "duration": 30}));
+        }
+        list
+    };
+    let pen = |actions: Vec<Value>| {
+        browser.command(
+            "POST",
+            "/actions",
+            &json!({"actions": [{
+                "type": "pointer", "id": "pen",
+                "parameters": {"pointerType": "pen"},
+                "actions": actions,
+            }]}),
+        );
+    };
+    let mut first = moves(0, 1);
+    first.push(json!({"type": "pointerDown", "button": 0}));
+    first.extend(moves(1, 20));
+    pen(first);
+    let early = browser
+        .wait_for(
+            "the sketch to grow under the pen",
+            &format!("const n = (() => {{ {steps} }})(); return n > 0 && n;"),
+        )
+        .as_i64()
+        .unwrap();
+    // Still drawing: nothing is written yet.
+    let now = browser.eval("return document.getElementById('text').value;", &[]);
+    assert_eq!(now.as_str().unwrap(), text);
+    pen(moves(21, 20));
+    browser.wait_for(
+        "more growth as the stroke lengthens",
+        &format!("return (() => {{ {steps} }})() > {early};"),
+    );
+    let mut last = vec![json!({"type": "pointerUp", "button": 0})];
+    last.insert(0, json!({"type": "pause", "duration": 50}));
+    pen(last);
+    // The pen lifted: the stroke is the sketch's points, and the preview
+    // is the render of it.
+    let written = browser.wait_for(
+        "the stroke to be written",
+        "const t = document.getElementById('text').value; return !t.includes('[40, 182]') && t;",
+    );
+    let written = written.as_str().unwrap().to_string();
+    assert!(written.contains("smooth = false"), "{written}");
+    let spec = moyo::ValidSpec::parse(&written, moyo::Format::Toml).unwrap();
+    let points = spec.spec().layers[0].lsystem[0]
+        .sketch
+        .as_ref()
+        .unwrap()
+        .points
+        .clone()
+        .unwrap();
+    assert!(points.len() > 20, "{points:?}");
+    // Drawn up the page: the stroke's end is far above its start.
+    assert!(
+        points[0][1] - points[points.len() - 1][1] > 50.0,
+        "{points:?}"
+    );
+    browser.wait_for(
+        "the render to replace the live drawing",
+        &format!(
+            "return !document.getElementById('studio-sketch') && (() => {{ {PREVIEW} }})() !== {};",
+            json!(before)
+        ),
+    );
+    studio.stop();
+}

@@ -22,5 +22,7 @@ mod snapshots;
 mod studio;
 #[cfg(feature = "studio")]
 mod studio_browser;
+#[cfg(feature = "studio")]
+mod studio_gestures;
 mod valid_spec;
 mod vine_cli;

@@ -38,6 +38,7 @@ pub use context::{Note, Progress};
 pub(crate) use flora::user_drawing;
 pub use flora::{draw, Drawing, Library, MotifParams};
 pub(crate) use flow::{flow_line, Flow};
+pub use lsystem::GrowingSketch;
 pub(crate) use stroke::{stroke_points, Stroke};
 
 use kurbo::{Affine, Rect};

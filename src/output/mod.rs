@@ -36,4 +36,5 @@ pub use dump::path_dump;
 pub use number::{grouped, write_number};
 pub use obj::to_obj;
 pub use preview::{check_dpi, render_png};
+pub(crate) use svg::write_path_data;
 pub use svg::{to_svg, SvgOptions};

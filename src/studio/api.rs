@@ -4,7 +4,7 @@
 //! words it; an edit that a newer one replaced is 409.
 
 use std::net::SocketAddr;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use axum::body::Bytes;
 use axum::extract::{DefaultBodyLimit, Query, Request, State};
@@ -17,6 +17,8 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 
 use super::edit::set_number;
+use super::gesture;
+use super::pen::Stroke;
 use super::session::{Good, Move, Session};
 use crate::error::Error;
 use crate::output::write_atomic;
@@ -30,10 +32,12 @@ pub const MAX_BODY: usize = 4 * 1024 * 1024;
 const PAGE: &str = include_str!("page.html");
 
 #[derive(Clone)]
-struct App {
-    session: Arc<Session>,
+pub(super) struct App {
+    pub(super) session: Arc<Session>,
     /// `Host` values the studio answers to.
     hosts: Arc<Vec<String>>,
+    /// The stroke being drawn with the page's pen.
+    pub(super) stroke: Arc<Mutex<Option<Stroke>>>,
 }
 
 /// The routes, behind the guard, for the studio listening on `addr`.
@@ -50,6 +54,7 @@ pub(super) fn router(session: Arc<Session>, addr: SocketAddr) -> Router {
     let app = App {
         session,
         hosts: Arc::new(hosts),
+        stroke: Arc::new(Mutex::new(None)),
     };
     Router::new()
         .route("/", get(page))
@@ -66,6 +71,7 @@ pub(super) fn router(session: Arc<Session>, addr: SocketAddr) -> Router {
         .route("/api/save", post(save))
         .route("/api/open", post(open))
         .route("/api/export", get(export))
+        .merge(gesture::routes())
         .layer(DefaultBodyLimit::max(MAX_BODY))
         .layer(middleware::from_fn_with_state(app.clone(), guard))
         .with_state(app)
@@ -112,7 +118,7 @@ async fn page() -> Response {
 }
 
 /// The error as JSON, with the status it calls for.
-fn failure(e: &Error) -> Response {
+pub(super) fn failure(e: &Error) -> Response {
     let status = match e {
         Error::Cancelled => StatusCode::CONFLICT,
         _ => StatusCode::UNPROCESSABLE_ENTITY,
@@ -134,7 +140,7 @@ fn svg_response(svg: &str, app: &App) -> Response {
 }
 
 /// Renders `text` off the server's threads.
-async fn apply(app: &App, text: String, direction: Move) -> Result<Arc<Good>, Response> {
+pub(super) async fn apply(app: &App, text: String, direction: Move) -> Result<Arc<Good>, Response> {
     let session = Arc::clone(&app.session);
     match tokio::task::spawn_blocking(move || session.apply(text, direction)).await {
         Ok(Ok(good)) => Ok(good),
@@ -149,7 +155,7 @@ async fn apply(app: &App, text: String, direction: Move) -> Result<Arc<Good>, Re
 
 /// The design after a change the page did not write itself: its text,
 /// preview and history.
-fn changed(app: &App, good: &Good) -> Response {
+pub(super) fn changed(app: &App, good: &Good) -> Response {
     let (undo, redo) = app.session.history();
     Json(json!({
         "scene": good.text,
@@ -192,7 +198,7 @@ async fn put_scene(State(app): State<App>, Query(q): Query<ViewQuery>, body: Byt
     }
 }
 
-fn nothing_rendered() -> Response {
+pub(super) fn nothing_rendered() -> Response {
     (
         StatusCode::NOT_FOUND,
         Json(json!({"error": "no description has rendered yet"})),

@@ -15,6 +15,8 @@
 mod api;
 mod edit;
 mod folder;
+mod gesture;
+mod pen;
 mod session;
 
 use std::net::SocketAddr;

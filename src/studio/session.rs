@@ -53,6 +53,9 @@ pub(crate) enum Move {
     Undo,
     /// Forward again.
     Redo,
+    /// A gesture on the page (a stroke, a click): an edit that, when its
+    /// description does not render, leaves the text as it was.
+    Gesture,
 }
 
 impl Session {
@@ -104,7 +107,7 @@ impl Session {
     pub(crate) fn step(&self, direction: Move) -> Option<String> {
         let s = self.state();
         match direction {
-            Move::Edit => None,
+            Move::Edit | Move::Gesture => None,
             Move::Undo => s.undo.last().cloned(),
             Move::Redo => s.redo.last().cloned(),
         }
@@ -138,7 +141,7 @@ impl Session {
                 let good = Arc::new(good);
                 let previous = s.good.as_ref().map(|g| g.text.clone());
                 match direction {
-                    Move::Edit => {
+                    Move::Edit | Move::Gesture => {
                         if let Some(previous) = previous.filter(|p| *p != text) {
                             s.undo.push(previous);
                             if s.undo.len() > HISTORY {
@@ -161,7 +164,9 @@ impl Session {
                 Ok(good)
             }
             Err(e) => {
-                s.text = text;
+                if direction != Move::Gesture {
+                    s.text = text;
+                }
                 Err(e)
             }
         }

@@ -26,22 +26,22 @@
 //! `…flower-<i>` and `…leaf-<i>`.
 
 mod draw;
+mod growing;
 mod ornament;
 
 #[cfg(test)]
 mod tests;
 
-use glam::DVec2;
 use kurbo::{Affine, Point, Rect};
 
 use super::{fitted, flow_line, stroke_points, Context, Stroke};
 use crate::error::Result;
 use crate::geom::{PathWalker, Side, TOLERANCE};
-use crate::lsystem::sketch::Sketch;
 use crate::lsystem::{Skeleton, Turtle, TurtleOptions};
 use crate::scene::{Group, Style};
 use crate::spec::{LSystemSpec, LimbStyle, Points, SketchSpec};
-use draw::{flat, limb_path, polygon_path, Projection};
+use draw::{flat, limb_path, polygon_path, Flat, Projection};
+pub use growing::GrowingSketch;
 use ornament::{ornaments, sites, Kind};
 
 /// The most modules a word may reach while rewriting (ABOP fig. 1.24a at
@@ -58,7 +58,7 @@ const MIN_LIMB: f64 = 0.05;
 pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let mut group = Group::new(group_id);
     let (skeleton, projection) = match &spec.sketch {
-        Some(sketch) => (grow_sketch(sketch, cx)?, Projection::PAGE),
+        Some(sketch) => (grow_sketch(spec, sketch, cx)?, Projection::PAGE),
         None => (grow(spec, group_id, cx)?, Projection::of(spec.view.axes())),
     };
     let flat = flat(&skeleton, &projection);
@@ -89,13 +89,8 @@ pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) ->
         let plant_id = format!("{group_id}.plant-{i}");
         let mut plant = Group::solid(&plant_id);
         let scale = place.determinant().abs().sqrt();
-        for (k, limb) in flat.limbs.iter().enumerate() {
-            // Old lineages shrink geometrically: what no pen can draw is
-            // left out rather than plotted as a dot.
-            if limb.length() * scale < MIN_LIMB {
-                continue;
-            }
-            let path = limb_path(limb, spec.smooth, spec.style == LimbStyle::Outline);
+        let outline = spec.style == LimbStyle::Outline;
+        for (k, path) in drawn_limbs(&flat, spec.smooth, outline, scale) {
             plant.push_path(format!("{plant_id}.limb-{k}"), *place * path, style.clone());
         }
         for (k, polygon) in flat.polygons.iter().enumerate() {
@@ -164,44 +159,36 @@ fn marked(spec: &LSystemSpec) -> String {
         .collect()
 }
 
+/// Each limb of `flat` that a pen can draw at `scale` with its index, as
+/// a path (see [`limb_path`]).
+fn drawn_limbs(
+    flat: &Flat,
+    smooth: bool,
+    outline: bool,
+    scale: f64,
+) -> impl Iterator<Item = (usize, kurbo::BezPath)> + '_ {
+    flat.limbs
+        .iter()
+        .enumerate()
+        // Old lineages shrink geometrically: what no pen can draw is left
+        // out rather than plotted as a dot.
+        .filter(move |(_, limb)| limb.length() * scale >= MIN_LIMB)
+        .map(move |(k, limb)| (k, limb_path(limb, smooth, outline)))
+}
+
 /// The skeleton of a sketch grown along its whole stroke.
-fn grow_sketch(spec: &SketchSpec, cx: &mut Context<'_>) -> Result<Skeleton> {
-    let field = cx.field("sketch");
-    let rules = spec.rules(&field)?;
-    let mut stroke = stroke_points(
+fn grow_sketch(spec: &LSystemSpec, sketch: &SketchSpec, cx: &mut Context<'_>) -> Result<Skeleton> {
+    let stroke = stroke_points(
         &Stroke {
-            points: spec.points.as_ref(),
-            smooth: spec.smooth,
-            svg: spec.svg.as_deref(),
-            line: spec.line,
+            points: sketch.points.as_ref(),
+            smooth: sketch.smooth,
+            svg: sketch.svg.as_deref(),
+            line: sketch.line,
         },
         &cx.field("sketch"),
         cx,
     )?;
-    if let Some(k) = spec.steps {
-        // A hair past k modules, so that rounding cannot lose the last.
-        cut(&mut stroke, f64::from(k) * spec.module + 1e-9);
-    }
-    let mut sketch = Sketch::new(rules, MAX_SEGMENTS.min(cx.budget().segments_left()))?;
-    sketch.extend(&stroke)?;
-    Ok(sketch.skeleton())
-}
-
-/// Cuts the polyline `line` where it is `length` long.
-fn cut(line: &mut Vec<DVec2>, length: f64) {
-    let mut walked = 0.0;
-    for i in 1..line.len() {
-        let step = line[i].distance(line[i - 1]);
-        if walked + step >= length {
-            let t = if step > 0.0 {
-                (length - walked) / step
-            } else {
-                0.0
-            };
-            line[i] = line[i - 1].lerp(line[i], t);
-            line.truncate(i + 1);
-            return;
-        }
-        walked += step;
-    }
+    let mut growing = GrowingSketch::new(spec, &cx.item_field(), cx.budget().segments_left())?;
+    growing.extend(&stroke)?;
+    Ok(growing.skeleton())
 }

@@ -165,6 +165,68 @@ fn a_sketch_lies_on_its_stroke_and_grows_with_its_steps() {
 }
 
 #[test]
+fn a_sketch_drawn_point_by_point_is_the_one_the_render_grows() {
+    use super::GrowingSketch;
+    use crate::spec::{Format, SceneSpec};
+    use glam::DVec2;
+    // A wavy stroke of many short pieces, as a pen gives it.
+    let stroke: Vec<DVec2> = (0..=240)
+        .map(|i| {
+            let t = f64::from(i) / 240.0;
+            DVec2::new(60.0 + 18.0 * (t * 7.0).sin(), 185.0 - 165.0 * t)
+        })
+        .collect();
+    let points: Vec<String> = stroke
+        .iter()
+        .map(|p| format!("[{}, {}]", p.x, p.y))
+        .collect();
+    for steps in ["", "steps = 7\n"] {
+        let table = format!(
+            "style = \"outline\"\n[layers.lsystem.sketch]\npoints = [{}]\nsmooth = false\nmodule = 9\n{steps}",
+            points.join(", ")
+        );
+        let rendered = paths(&scene(&table));
+        let text = test_scene::text("lsystem", &table);
+        let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+        let table = &spec.layers[0].lsystem[0];
+        let mut growing = GrowingSketch::new(table, "layers[0].lsystem[0]", usize::MAX).unwrap();
+        let mut grown = Vec::new();
+        for p in &stroke {
+            growing.extend(std::slice::from_ref(p)).unwrap();
+            grown.push(growing.steps());
+        }
+        // It grew while the stroke was drawn, a step at a time.
+        assert!(grown.windows(2).all(|w| w[1] <= w[0] + 1), "{grown:?}");
+        let (last, half) = (growing.steps(), grown[grown.len() / 2]);
+        if steps.is_empty() {
+            assert!(half > 0 && half < last, "{half} of {last}");
+        } else {
+            // Full grown at seven steps, long before the stroke ends.
+            assert_eq!((half, last), (7, 7));
+        }
+        let live = growing.paths();
+        assert_eq!(live.len(), rendered.len(), "{steps}");
+        let same = live
+            .iter()
+            .zip(&rendered)
+            .all(|(a, b)| a.to_svg() == b.to_svg());
+        assert!(same, "the live drawing differs from the render ({steps})");
+    }
+    let no_sketch = SceneSpec::parse(
+        &test_scene::text("lsystem", "axiom = \"F\"\n"),
+        Format::Toml,
+    )
+    .unwrap();
+    let e = GrowingSketch::new(&no_sketch.layers[0].lsystem[0], "layers[0].lsystem[0]", 10)
+        .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("layers[0].lsystem[0]: has no [sketch]"),
+        "{e}"
+    );
+}
+
+#[test]
 fn the_seed_draws_stochastic_rules() {
     let table = "axiom = \"F\"\nrules = [\"F ->(1) F[+F]F\", \"F ->(1) F[-F]F\"]\niterations = 4\n";
     let a = crate::output::path_dump(&scene(table), 3);

@@ -1,0 +1,162 @@
+//! The page's gestures, each a plain change of the description: a stroke
+//! drawn with the pen grows a sketch (live, then written as its points),
+//! a click gives a zentangle region its procedure (a manual step). What
+//! each family offers to a gesture is listed by `GET /api/targets`.
+
+use axum::extract::State;
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use serde::Deserialize;
+use serde_json::{json, Value};
+
+use super::api::{apply, changed, failure, nothing_rendered, App};
+use super::pen::{Stroke, Target};
+use super::session::Move;
+use crate::error::Error;
+use crate::spec::Table;
+
+/// The gestures' routes.
+pub(super) fn routes() -> Router<App> {
+    Router::new()
+        .route("/api/targets", get(targets))
+        .route("/api/stroke/begin", post(stroke_begin))
+        .route("/api/stroke/extend", post(stroke_extend))
+        .route("/api/stroke/end", post(stroke_end))
+}
+
+/// What the gestures can work on in the last good design: the layers
+/// (a new sketch goes in one), the sketch tables, the zentangle fills.
+async fn targets(State(app): State<App>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let spec = good.spec.spec();
+    let scene = &good.rendered.scene;
+    let mut sketch = Vec::new();
+    let mut zentangle = Vec::new();
+    let layers: Vec<Value> = spec
+        .layers
+        .iter()
+        .enumerate()
+        .map(|(l, layer)| {
+            let layer_id = scene.layers.get(l).map_or("", |s| s.id.as_str());
+            for item in layer.items() {
+                let target = json!({
+                    "field": format!("layers[{l}].{}", item.field),
+                    "label": format!("{} · {}", layer.name, item.id),
+                    // The group the table's drawing is in the preview.
+                    "group": format!("{layer_id}.{}", item.id),
+                });
+                match item.table {
+                    Table::LSystem(t) if t.sketch.is_some() => sketch.push(target),
+                    Table::Zentangle(_) => zentangle.push(target),
+                    _ => {}
+                }
+            }
+            json!({"index": l, "name": layer.name})
+        })
+        .collect();
+    Json(json!({"layers": layers, "sketch": sketch, "zentangle": zentangle})).into_response()
+}
+
+#[derive(Deserialize)]
+struct Begin {
+    /// The sketch table's field path, or none for a new sketch.
+    target: Option<String>,
+    /// For a new sketch: the layer's index (default: the frontmost,
+    /// last).
+    layer: Option<usize>,
+    /// The first point, scene mm.
+    at: [f64; 2],
+}
+
+#[derive(Deserialize)]
+struct Extend {
+    points: Vec<[f64; 2]>,
+}
+
+/// Runs `work` on the stroke off the server's threads (growing and
+/// drawing a sketch takes time in proportion to its size).
+async fn with_stroke<T: Send + 'static>(
+    app: &App,
+    work: impl FnOnce(&mut Option<Stroke>) -> Result<T, Error> + Send + 'static,
+) -> Result<T, Response> {
+    let stroke = std::sync::Arc::clone(&app.stroke);
+    let done = tokio::task::spawn_blocking(move || {
+        let mut stroke = stroke
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        work(&mut stroke)
+    })
+    .await;
+    match done {
+        Ok(Ok(t)) => Ok(t),
+        Ok(Err(e)) => Err(failure(&e)),
+        Err(e) => Err((StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response()),
+    }
+}
+
+fn no_stroke() -> Error {
+    Error::invalid("stroke", "no stroke is being drawn: begin one first")
+}
+
+/// Starts a stroke: `{"target": field | null, "layer": i, "at": [x, y]}`.
+async fn stroke_begin(State(app): State<App>, Json(begin): Json<Begin>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let target = match begin.target {
+        Some(field) => Target::Table(field),
+        None => Target::New(
+            begin
+                .layer
+                .unwrap_or_else(|| good.spec.spec().layers.len().saturating_sub(1)),
+        ),
+    };
+    let started = with_stroke(&app, move |stroke| {
+        let (new, growth) = Stroke::begin(&good, target, begin.at)?;
+        *stroke = Some(new);
+        Ok(growth)
+    })
+    .await;
+    match started {
+        Ok(growth) => Json(growth).into_response(),
+        Err(response) => response,
+    }
+}
+
+/// More of the stroke: `{"points": [[x, y], …]}`; answers what grew.
+async fn stroke_extend(State(app): State<App>, Json(more): Json<Extend>) -> Response {
+    let grown = with_stroke(&app, move |stroke| {
+        stroke.as_mut().ok_or_else(no_stroke)?.extend(&more.points)
+    })
+    .await;
+    match grown {
+        Ok(growth) => Json(growth).into_response(),
+        Err(response) => response,
+    }
+}
+
+/// The pen lifts: the stroke is written into the description and the
+/// design renders (one step of the history).
+async fn stroke_end(State(app): State<App>) -> Response {
+    // The stroke began on the last good design: it goes into that.
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let text = good.text.clone();
+    let written = with_stroke(&app, move |stroke| {
+        stroke.take().ok_or_else(no_stroke)?.finish(&text)
+    })
+    .await;
+    let text = match written {
+        Ok(text) => text,
+        Err(response) => return response,
+    };
+    match apply(&app, text, Move::Gesture).await {
+        Ok(good) => changed(&app, &good),
+        Err(response) => response,
+    }
+}

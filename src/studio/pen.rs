@@ -1,0 +1,254 @@
+//! The studio's pen: a stroke drawn on the page grows a sketch L-system
+//! as it comes in — one [`GrowingSketch`] extended by every batch of
+//! points, never grown again from the start — and when the pen lifts,
+//! the stroke becomes the sketch table's `points` (a new table when the
+//! stroke starts one), so nothing of it lives only in the page.
+//!
+//! The points are kept as the description will hold them (a tenth of a
+//! millimetre, at least [`MIN_GAP`] apart, joined by straight lines), so
+//! that the render after the stroke draws exactly what grew under the
+//! pen.
+
+use glam::DVec2;
+use kurbo::BezPath;
+use toml_edit::{Array, Table};
+
+use super::edit::Edit;
+use super::session::Good;
+use crate::error::{Error, Result};
+use crate::motif::GrowingSketch;
+use crate::output::write_path_data;
+use crate::spec::LSystemSpec;
+
+/// Points of a stroke closer than this to the last one kept (mm) are
+/// left out: finer than a pen draws, and they would only lengthen the
+/// description.
+pub(crate) const MIN_GAP: f64 = 0.5;
+
+/// The table a stroke that starts a sketch of its own writes (in the
+/// layer it was drawn for): the stroke as straight lines, grown by the
+/// paper's rules and drawn as one outline, as the sketch templates are.
+fn new_table(id: &str, points: Array) -> Table {
+    let mut sketch = Table::new();
+    sketch.insert("points", toml_edit::value(points));
+    sketch.insert("smooth", toml_edit::value(false));
+    sketch.insert("module", toml_edit::value(8));
+    sketch.insert("width", toml_edit::value(2));
+    let mut table = Table::new();
+    table.insert("id", toml_edit::value(id));
+    table.insert("style", toml_edit::value("outline"));
+    table.insert("sketch", toml_edit::Item::Table(sketch));
+    table
+}
+
+/// Decimals of the live drawing's path data.
+const PRECISION: u8 = 2;
+
+/// Where a stroke goes: a sketch table already there, or a new one at
+/// the end of a layer's L-systems.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) enum Target {
+    /// The field path of an `lsystem` table with a `[sketch]`.
+    Table(String),
+    /// A new sketch table in the layer with this index.
+    New(usize),
+}
+
+/// A stroke being drawn.
+pub(crate) struct Stroke {
+    target: Target,
+    growing: GrowingSketch,
+    points: Vec<[f64; 2]>,
+    /// The colour and width of the pen that will draw it.
+    pen: (String, f64),
+    outline: bool,
+}
+
+/// What the page draws while the stroke comes in.
+#[derive(Debug, Clone, serde::Serialize)]
+pub(crate) struct Growth {
+    /// Steps of the sketch so far.
+    pub steps: usize,
+    /// The limbs as SVG path data (scene mm), or `None` when no step was
+    /// taken since the last answer (the drawing is as it was).
+    pub paths: Option<Vec<String>>,
+    /// Outlines (drawn as one silhouette) rather than centre lines.
+    pub outline: bool,
+    /// The pen's colour.
+    pub color: String,
+    /// The pen's width, mm.
+    pub width: f64,
+}
+
+impl Stroke {
+    /// Starts a stroke at `at` (scene mm) for `target` in the design
+    /// `good`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] at `target` when it is not a sketch table of
+    /// the design or not a layer of it.
+    pub(crate) fn begin(good: &Good, target: Target, at: [f64; 2]) -> Result<(Stroke, Growth)> {
+        let spec = good.spec.spec();
+        let (table, layer, field) = match &target {
+            Target::Table(field) => {
+                let place = table_place(field)
+                    .and_then(|(l, t)| Some((spec.layers.get(l)?.lsystem.get(t)?, l)));
+                let Some((table, layer)) = place.filter(|(t, _)| t.sketch.is_some()) else {
+                    return Err(Error::invalid(field, "is not a sketch table of the design"));
+                };
+                (table.clone(), layer, field.clone())
+            }
+            Target::New(layer) => {
+                if *layer >= spec.layers.len() {
+                    return Err(Error::invalid(
+                        format!("layers[{layer}]"),
+                        "the design has no such layer",
+                    ));
+                }
+                let text = toml_edit::DocumentMut::from(new_table("new", Array::new())).to_string();
+                let table: LSystemSpec =
+                    toml::from_str(&text).map_err(|e| Error::invalid("studio", e.to_string()))?;
+                (table, *layer, format!("layers[{layer}].lsystem[new]"))
+            }
+        };
+        let growing = GrowingSketch::new(&table, &field, spec.limits.max_segments)?;
+        let scene = &good.rendered.scene;
+        let pen = scene
+            .layers
+            .get(layer)
+            .and_then(|l| scene.pens.iter().find(|p| p.number == l.pen))
+            .map_or_else(
+                || ("#1d1d1f".to_string(), 0.3),
+                |p| (p.color.to_string(), p.width),
+            );
+        let mut stroke = Stroke {
+            target,
+            growing,
+            points: Vec::new(),
+            pen,
+            outline: table.style == crate::spec::LimbStyle::Outline,
+        };
+        let mut growth = stroke.extend(&[at])?;
+        // The page clears what an earlier stroke left.
+        growth.paths = Some(Vec::new());
+        Ok((stroke, growth))
+    }
+
+    /// Adds `points` (scene mm) to the stroke and grows the sketch.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] for a point that is not finite, or when the
+    /// sketch would grow past the design's segment limit.
+    pub(crate) fn extend(&mut self, points: &[[f64; 2]]) -> Result<Growth> {
+        let before = self.growing.steps();
+        let mut taken = Vec::new();
+        for &[x, y] in points {
+            if !(x.is_finite() && y.is_finite()) {
+                return Err(Error::invalid(
+                    "points",
+                    "a point of the stroke is not finite",
+                ));
+            }
+            let p = [tenth(x), tenth(y)];
+            let far = self
+                .points
+                .last()
+                .is_none_or(|q| (p[0] - q[0]).hypot(p[1] - q[1]) >= MIN_GAP);
+            if far {
+                self.points.push(p);
+                taken.push(DVec2::from_array(p));
+            }
+        }
+        self.growing.extend(&taken)?;
+        let grew = self.growing.steps() != before;
+        Ok(Growth {
+            steps: self.growing.steps(),
+            paths: grew.then(|| self.growing.paths().iter().map(path_data).collect()),
+            outline: self.outline,
+            color: self.pen.0.clone(),
+            width: self.pen.1,
+        })
+    }
+
+    /// The description `text` with the stroke written into it: the
+    /// table's stroke replaced by these points, or a new sketch table.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] at `points` for a stroke with no length, or
+    /// what the edit of the text reports.
+    pub(crate) fn finish(&self, text: &str) -> Result<String> {
+        if self.points.len() < 2 {
+            return Err(Error::invalid(
+                "points",
+                format!("the stroke has no length: draw further than {MIN_GAP} mm"),
+            ));
+        }
+        let mut points = Array::new();
+        for &[x, y] in &self.points {
+            let mut pair = Array::new();
+            pair.push(x);
+            pair.push(y);
+            points.push(pair);
+        }
+        let mut edit = Edit::parse(text)?;
+        match &self.target {
+            Target::Table(field) => {
+                let sketch = format!("{field}.sketch");
+                for key in ["svg", "line"] {
+                    edit.remove(&format!("{sketch}.{key}"))?;
+                }
+                edit.set(&format!("{sketch}.smooth"), false)?;
+                edit.set(&format!("{sketch}.points"), points)?;
+            }
+            Target::New(layer) => {
+                let table = new_table(&self.new_id(text, *layer), points.clone());
+                edit.push_table(&format!("layers[{layer}].lsystem"), table)?;
+            }
+        }
+        Ok(edit.text())
+    }
+
+    /// An id for a new sketch that no table of the layer has.
+    fn new_id(&self, text: &str, layer: usize) -> String {
+        let taken: Vec<String> = toml::from_str::<toml::Value>(text)
+            .ok()
+            .and_then(|v| {
+                let tables = v
+                    .get("layers")?
+                    .get(layer)?
+                    .get("lsystem")?
+                    .as_array()?
+                    .clone();
+                Some(
+                    tables
+                        .iter()
+                        .filter_map(|t| Some(t.get("id")?.as_str()?.to_string()))
+                        .collect(),
+                )
+            })
+            .unwrap_or_default();
+        (1..)
+            .map(|k| format!("sketch-{k}"))
+            .find(|id| !taken.contains(id))
+            .unwrap_or_default()
+    }
+}
+
+/// The layer and table indices of `layers[L].lsystem[T]`.
+fn table_place(field: &str) -> Option<(usize, usize)> {
+    let rest = field.strip_prefix("layers[")?;
+    let (layer, rest) = rest.split_once("].lsystem[")?;
+    let table = rest.strip_suffix(']')?;
+    Some((layer.parse().ok()?, table.parse().ok()?))
+}
+
+/// `v` to a tenth of a millimetre, as written.
+fn tenth(v: f64) -> f64 {
+    (v * 10.0).round() / 10.0
+}
+
+fn path_data(path: &BezPath) -> String {
+    let mut d = String::new();
+    write_path_data(&mut d, path, PRECISION);
+    d
+}

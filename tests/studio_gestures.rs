@@ -1,0 +1,186 @@
+//! The studio's gestures through its API, as the page makes them: a
+//! stroke drawn with the pen grows a sketch while it comes in and is
+//! written into the description when the pen lifts; a click gives a
+//! zentangle region its procedure. Each is one plain change of the
+//! description, undone like any other.
+
+use std::net::SocketAddr;
+
+use serde_json::{json, Value};
+
+use crate::studio::{call, studio, Answer, SCENE};
+
+fn post(addr: SocketAddr, path: &str, body: &Value) -> Answer {
+    call(
+        addr,
+        "POST",
+        path,
+        &["Content-Type: application/json"],
+        body.to_string().as_bytes(),
+    )
+}
+
+fn scene(addr: SocketAddr) -> String {
+    call(addr, "GET", "/api/scene", &[], b"").text()
+}
+
+/// A pen stroke up the page in `n` batches of points, scene mm.
+fn batches(n: usize) -> Vec<Value> {
+    (0..n)
+        .map(|b| {
+            let points: Vec<[f64; 2]> = (1..=10)
+                .map(|i| {
+                    let t = (b * 10 + i) as f64;
+                    [40.0 + 12.0 * (t / 15.0).sin(), 180.0 - 1.5 * t]
+                })
+                .collect();
+            json!({ "points": points })
+        })
+        .collect()
+}
+
+#[test]
+fn a_stroke_grows_its_sketch_while_drawn_and_is_written_when_the_pen_lifts() {
+    let text = moyo::templates::get("lsystem-sketch-s").unwrap().text;
+    let (studio, _dir) = studio(text);
+    let addr = studio.addr();
+    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    assert_eq!(targets["sketch"][0]["field"], "layers[0].lsystem[0]");
+
+    let begin = post(
+        addr,
+        "/api/stroke/begin",
+        &json!({"target": "layers[0].lsystem[0]", "at": [40, 180]}),
+    );
+    assert_eq!(begin.status, 200, "{}", begin.text());
+    assert_eq!(begin.json()["steps"], 0);
+    assert_eq!(begin.json()["outline"], true);
+    // Every batch answers with the structure so far: it grows step by
+    // step as the stroke lengthens (a module is 8 mm: 15 mm a batch).
+    let mut steps = Vec::new();
+    let mut limbs = 0;
+    for batch in batches(8) {
+        let grown = post(addr, "/api/stroke/extend", &batch).json();
+        steps.push(grown["steps"].as_u64().unwrap());
+        if let Some(paths) = grown["paths"].as_array() {
+            assert!(paths.len() >= limbs, "limbs never go away");
+            limbs = paths.len();
+            assert!(paths.iter().all(|d| d.as_str().unwrap().starts_with("M ")));
+        }
+    }
+    assert!(steps.windows(2).all(|w| w[0] < w[1]), "{steps:?}");
+    assert!(steps[0] >= 1 && limbs > 10, "{steps:?}, {limbs} limbs");
+    // Nothing is written until the pen lifts.
+    assert_eq!(scene(addr), text);
+
+    let end = post(addr, "/api/stroke/end", &json!({}));
+    assert_eq!(end.status, 200, "{}", end.text());
+    let written = scene(addr);
+    assert_eq!(end.json()["scene"], written);
+    // The stroke is the sketch's points now, straight between them, each
+    // a tenth of a millimetre and at least half a millimetre apart.
+    let spec = moyo::ValidSpec::parse(&written, moyo::Format::Toml).unwrap();
+    let sketch = spec.spec().layers[0].lsystem[0].sketch.clone().unwrap();
+    let points = sketch.points.unwrap();
+    assert!(!sketch.smooth);
+    assert_eq!(points[0], [40.0, 180.0]);
+    assert!(points.len() > 40, "{}", points.len());
+    for w in points.windows(2) {
+        let gap = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+        assert!(gap >= 0.5 - 1e-9, "{w:?}");
+    }
+    for p in points.iter().flatten() {
+        assert_eq!((p * 10.0).round() / 10.0, *p);
+    }
+    // The rest of the description is as it was, comments and all.
+    assert!(written.contains("# The limbs' outlines merge into one silhouette"));
+    // The render is the command line's render of that description.
+    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    assert_eq!(svg, moyo::render(&spec).unwrap().svg);
+    // One step of the history.
+    let undone = post(addr, "/api/undo", &json!({}));
+    assert_eq!(undone.json()["scene"], text);
+    studio.stop();
+}
+
+#[test]
+fn a_stroke_can_start_a_new_sketch_in_a_layer_of_any_design() {
+    let (studio, _dir) = studio(SCENE);
+    let addr = studio.addr();
+    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    assert_eq!(targets["sketch"], json!([]));
+    assert_eq!(targets["layers"][0]["name"], "front");
+    assert_eq!(
+        post(
+            addr,
+            "/api/stroke/begin",
+            &json!({"target": null, "layer": 0, "at": [60, 170]})
+        )
+        .status,
+        200
+    );
+    for batch in batches(4) {
+        assert_eq!(post(addr, "/api/stroke/extend", &batch).status, 200);
+    }
+    let end = post(addr, "/api/stroke/end", &json!({}));
+    assert_eq!(end.status, 200, "{}", end.text());
+    let written = scene(addr);
+    assert!(written.starts_with(SCENE), "{written}");
+    let spec = moyo::ValidSpec::parse(&written, moyo::Format::Toml).unwrap();
+    let table = &spec.spec().layers[0].lsystem[0];
+    assert_eq!(table.id.as_deref(), Some("sketch-1"));
+    assert!(table.sketch.as_ref().unwrap().points.is_some());
+    // The design now has a sketch to draw into.
+    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    assert_eq!(targets["sketch"][0]["field"], "layers[0].lsystem[0]");
+    studio.stop();
+}
+
+#[test]
+fn strokes_that_cannot_be_written_leave_the_description_as_it_was() {
+    let (studio, _dir) = studio(SCENE);
+    let addr = studio.addr();
+    // No stroke begun.
+    let lost = post(addr, "/api/stroke/extend", &json!({"points": [[1, 2]]}));
+    assert_eq!(lost.status, 422);
+    assert!(lost.json()["error"].as_str().unwrap().contains("no stroke"));
+    // Not a sketch table, not a layer.
+    for target in [
+        json!({"target": "layers[0].trees[0]", "at": [1, 2]}),
+        json!({"target": null, "layer": 7, "at": [1, 2]}),
+    ] {
+        let refused = post(addr, "/api/stroke/begin", &target);
+        assert_eq!(refused.status, 422, "{target}");
+    }
+    // A dot, not a stroke.
+    post(
+        addr,
+        "/api/stroke/begin",
+        &json!({"target": null, "at": [50, 50]}),
+    );
+    post(
+        addr,
+        "/api/stroke/extend",
+        &json!({"points": [[50.1, 50.2]]}),
+    );
+    let dot = post(addr, "/api/stroke/end", &json!({}));
+    assert_eq!(dot.status, 422);
+    assert!(dot.json()["error"].as_str().unwrap().contains("no length"));
+    // A point that is no number is refused by the JSON, not a crash.
+    post(
+        addr,
+        "/api/stroke/begin",
+        &json!({"target": null, "at": [50, 50]}),
+    );
+    let bad = call(
+        addr,
+        "POST",
+        "/api/stroke/extend",
+        &["Content-Type: application/json"],
+        b"{\"points\": [[1e999, 2]]}",
+    );
+    assert!(bad.status >= 400 && bad.status < 500, "{}", bad.status);
+    assert_eq!(scene(addr), SCENE);
+    assert_eq!(call(addr, "GET", "/api/state", &[], b"").json()["undo"], 0);
+    studio.stop();
+}
