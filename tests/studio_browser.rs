@@ -455,3 +455,46 @@ fn a_stroke_drawn_with_a_pen_grows_the_sketch_while_the_pen_is_down() {
     );
     studio.stop();
 }
+
+#[test]
+fn a_click_in_a_zentangle_fills_the_region_under_it() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let (studio, _dir) = studio(crate::studio_gestures::TILE);
+    browser.open(&studio.url());
+    browser.wait_for("the first preview", PREVIEW);
+    browser.wait_for(
+        "the fills to choose from",
+        "return document.getElementById('tangle-target').value === 'layers[0].zentangle[0]';",
+    );
+    browser.click("input[name=tool][value=tangle]");
+    browser.eval("document.getElementById('procedure').value = '18';", &[]);
+    let drawn = "return document.querySelectorAll('#preview [id*=\".step-1-p18\"]').length;";
+    assert_eq!(browser.eval(drawn, &[]), json!(0));
+    // Click in the lower part of the tile, below the pencil line.
+    let svg = browser.element("#preview svg");
+    browser.command(
+        "POST",
+        "/actions",
+        &json!({"actions": [{
+            "type": "pointer", "id": "mouse",
+            "parameters": {"pointerType": "mouse"},
+            "actions": [
+                {"type": "pointerMove", "origin": {ELEMENT: svg}, "x": 0, "y": 120},
+                {"type": "pointerDown", "button": 0},
+                {"type": "pointerUp", "button": 0},
+            ],
+        }]}),
+    );
+    browser.wait_for(
+        "the region to be filled",
+        "return document.querySelectorAll('#preview [id*=\".step-1-p18\"]').length > 0;",
+    );
+    let text = browser.eval("return document.getElementById('text').value;", &[]);
+    assert!(
+        text.as_str().unwrap().contains("procedure = 18 }]"),
+        "{text}"
+    );
+    studio.stop();
+}

@@ -184,3 +184,110 @@ fn strokes_that_cannot_be_written_leave_the_description_as_it_was() {
     assert_eq!(call(addr, "GET", "/api/state", &[], b"").json()["undo"], 0);
     studio.stop();
 }
+
+/// A zentangle tile that the loop does not fill: every region is the
+/// designer's to choose.
+pub(crate) const TILE: &str =
+    "version = 1\nseed = 11\n\n[page]\nsize = [109, 109]\nmargin = 10\n\n\
+    [[layers]]\nname = \"tile\"\n\n[[layers.zentangle]]\nid = \"tile\"\nsteps = 0\n\
+    lines = [[[0, 40], [89, 50]]]\n\n[layers.zentangle.region]\n\
+    polygon = [[0, 0], [89, 0], [89, 89], [0, 89]]\n";
+
+/// The ids of the steps drawn in the SVG, `step-K-pP`.
+fn steps_drawn(svg: &str) -> Vec<String> {
+    let mut ids: Vec<String> = svg
+        .split("id=\"")
+        .skip(1)
+        .filter_map(|rest| rest.split('"').next())
+        .filter_map(|id| id.split('.').nth(2))
+        .filter(|s| s.starts_with("step-") && s.contains("-p"))
+        .map(str::to_string)
+        .collect();
+    ids.dedup();
+    ids
+}
+
+#[test]
+fn a_click_gives_the_white_region_under_it_a_procedure() {
+    let (studio, _dir) = studio(TILE);
+    let addr = studio.addr();
+    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    assert_eq!(targets["zentangle"][0]["field"], "layers[0].zentangle[0]");
+    assert_eq!(targets["zentangle"][0]["group"], "tile.tile");
+    assert!(steps_drawn(&call(addr, "GET", "/api/svg", &[], b"").text()).is_empty());
+    // Below the line: Voronoi cells there.
+    let click = json!({"target": "layers[0].zentangle[0]", "at": [44.44, 70.01], "procedure": 18});
+    let filled = post(addr, "/api/fill", &click);
+    assert_eq!(filled.status, 200, "{}", filled.text());
+    let written = scene(addr);
+    assert!(
+        written.contains("manual = [{ at = [44.4, 70.0], procedure = 18 }]"),
+        "{written}"
+    );
+    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    assert_eq!(steps_drawn(&svg), ["step-1-p18"]);
+    // Above the line, contour lines: a second step, appended.
+    let click = json!({"target": "layers[0].zentangle[0]", "at": [44, 10], "procedure": 16});
+    assert_eq!(post(addr, "/api/fill", &click).status, 200);
+    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    assert_eq!(steps_drawn(&svg), ["step-1-p18", "step-2-p16"]);
+    // Off the tile: nothing there to fill, and nothing changes.
+    let before = scene(addr);
+    let click = json!({"target": "layers[0].zentangle[0]", "at": [95, 95], "procedure": 2});
+    let refused = post(addr, "/api/fill", &click);
+    assert_eq!(refused.status, 422);
+    let e = refused.json();
+    assert!(
+        e["error"]
+            .as_str()
+            .unwrap()
+            .contains("lies in no white region"),
+        "{e}"
+    );
+    assert_eq!(e["path"], "layers[0].zentangle[0].manual[2].at");
+    assert_eq!(scene(addr), before);
+    // Not a fill, not a procedure.
+    for click in [
+        json!({"target": "layers[0].trees[0]", "at": [4, 4], "procedure": 2}),
+        json!({"target": "layers[0].zentangle[0]", "at": [4, 4], "procedure": 20}),
+    ] {
+        assert_eq!(post(addr, "/api/fill", &click).status, 422, "{click}");
+    }
+    assert_eq!(scene(addr), before);
+    // Each click was one step of the history.
+    let undone = post(addr, "/api/undo", &json!({}));
+    let preview = undone.json()["preview"].as_str().unwrap().to_string();
+    assert_eq!(steps_drawn(&preview), ["step-1-p18"]);
+    studio.stop();
+}
+
+#[test]
+fn a_click_on_a_filled_tile_touches_up_what_the_loop_left_white() {
+    let text = TILE.replace("steps = 0", "steps = 4");
+    let (studio, _dir) = studio(&text);
+    let addr = studio.addr();
+    let before = steps_drawn(&call(addr, "GET", "/api/svg", &[], b"").text());
+    // Some point of the tile that the four steps left white.
+    let filled = (1..15)
+        .flat_map(|i| (1..15).map(move |j| [f64::from(i) * 6.0, f64::from(j) * 6.0]))
+        .map(|at| {
+            post(
+                addr,
+                "/api/fill",
+                &json!({"target": "layers[0].zentangle[0]", "at": at, "procedure": 2}),
+            )
+        })
+        .find(|answer| answer.status == 200)
+        .expect("four steps leave some region white");
+    let written = filled.json()["scene"].as_str().unwrap().to_string();
+    assert!(
+        written.contains("procedure = 2, after = true }]"),
+        "{written}"
+    );
+    let after = steps_drawn(&call(addr, "GET", "/api/svg", &[], b"").text());
+    // The loop's steps as they were, and one more.
+    assert_eq!(after[..before.len()], before[..]);
+    assert_eq!(after.len(), before.len() + 1);
+    assert!(after.last().unwrap().ends_with("-p2"), "{after:?}");
+    studio.stop();
+}

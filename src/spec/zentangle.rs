@@ -8,7 +8,8 @@
 //! circle, a polygon, the closed shapes of an SVG file or the light parts
 //! of a monochrome image (less `holes`).
 //! `lines` split it before the loop starts, and `manual` steps choose the
-//! procedure of the region under a point before the automatic ones.
+//! procedure of the region under a point before the automatic ones (or,
+//! with `after`, once they are done).
 
 use serde::{Deserialize, Serialize};
 
@@ -96,7 +97,8 @@ pub struct ZentangleSpec {
     /// region as a pen line does.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lines: Vec<Points>,
-    /// Steps chosen by hand, run before the automatic ones.
+    /// Steps chosen by hand: run before the automatic ones, or after them
+    /// with `after = true`, in the order written.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub manual: Vec<ManualStep>,
     /// How black regions are drawn (default `"hatch"`).
@@ -150,6 +152,12 @@ pub struct ManualStep {
     pub at: [f64; 2],
     /// The procedure (0–19).
     pub procedure: u32,
+    /// Run after the automatic steps, in a region they left white (a
+    /// touch-up of the finished tile; what the studio writes for a click
+    /// on one), rather than before them (the default: the paper's manual
+    /// mode, choosing from the blank tile on).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub after: bool,
 }
 
 /// How black regions are drawn.

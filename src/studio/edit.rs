@@ -125,19 +125,25 @@ impl Edit {
     }
 
     /// Appends `table` to the list of tables at `field` (`[[…]]` tables or
-    /// a list of `{ … }`), starting one when there is none, and returns
-    /// its index in the list.
+    /// a list of `{ … }`), and returns its index in the list. Where there
+    /// is no list yet, one is started: `[[…]]` tables, or with `inline` a
+    /// list of `{ … }` (for short tables, as a manual step is).
     ///
     /// # Errors
     /// [`Error::Invalid`] at `field` for a path that leads nowhere or to
     /// something other than a list of tables.
-    pub(crate) fn push_table(&mut self, field: &str, table: Table) -> Result<usize> {
+    pub(crate) fn push_table(&mut self, field: &str, table: Table, inline: bool) -> Result<usize> {
         let mut index = 0;
         self.at(field, &mut |slot| {
             let Slot::Key(parent, key) = slot else {
                 return Err("an index where a table has names");
             };
             match parent.get_mut(key) {
+                None if inline => {
+                    let mut list = Array::new();
+                    list.push(table.clone().into_inline_table());
+                    parent.insert(key, Item::Value(Value::Array(list)));
+                }
                 None => {
                     let mut list = ArrayOfTables::new();
                     list.push(table.clone());
@@ -280,11 +286,13 @@ mod tests {
         table.insert("id", toml_edit::value("s"));
         table.insert("sketch", Item::Table(inner));
         assert_eq!(
-            edit.push_table("layers[0].lsystem", table.clone()).unwrap(),
+            edit.push_table("layers[0].lsystem", table.clone(), false)
+                .unwrap(),
             0
         );
         assert_eq!(
-            edit.push_table("layers[1].trees", table.clone()).unwrap(),
+            edit.push_table("layers[1].trees", table.clone(), true)
+                .unwrap(),
             1
         );
         let out = edit.text();
@@ -304,7 +312,18 @@ mod tests {
         assert_eq!(v["layers"][1]["trees"][1]["id"].as_str(), Some("s"));
         assert_eq!(v["layers"].as_array().unwrap().len(), 2);
         // Not a list of tables.
-        assert!(edit.push_table("layers[0].name", table).is_err());
+        assert!(edit
+            .push_table("layers[0].name", table.clone(), true)
+            .is_err());
+        // A short list starts inline.
+        edit.push_table("layers[1].trees[0].manual", table, true)
+            .unwrap();
+        assert!(
+            edit.text()
+                .contains("manual = [{ id = \"s\", sketch = { module = 8 } }]"),
+            "{}",
+            edit.text()
+        );
     }
 
     #[test]

@@ -12,6 +12,7 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 
 use super::api::{apply, changed, failure, nothing_rendered, App};
+use super::edit::Edit;
 use super::pen::{Stroke, Target};
 use super::session::Move;
 use crate::error::Error;
@@ -24,6 +25,7 @@ pub(super) fn routes() -> Router<App> {
         .route("/api/stroke/begin", post(stroke_begin))
         .route("/api/stroke/extend", post(stroke_extend))
         .route("/api/stroke/end", post(stroke_end))
+        .route("/api/fill", post(fill))
 }
 
 /// What the gestures can work on in the last good design: the layers
@@ -158,5 +160,62 @@ async fn stroke_end(State(app): State<App>) -> Response {
     match apply(&app, text, Move::Gesture).await {
         Ok(good) => changed(&app, &good),
         Err(response) => response,
+    }
+}
+
+#[derive(Deserialize)]
+struct Fill {
+    /// The zentangle table's field path.
+    target: String,
+    /// The click, scene mm.
+    at: [f64; 2],
+    /// The procedure (0–19).
+    procedure: u32,
+}
+
+/// A click in a zentangle fill: the white region under it gets the
+/// procedure, as a manual step — after the table's automatic steps when
+/// it has any (a touch-up of the tile the designer sees), from the blank
+/// tile on when it has none. A click where no white region is changes
+/// nothing (422, saying why).
+async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let spec = good.spec.spec();
+    let table = spec.layers.iter().enumerate().find_map(|(l, layer)| {
+        layer.zentangle.iter().enumerate().find_map(|(t, table)| {
+            (format!("layers[{l}].zentangle[{t}]") == click.target).then_some(table)
+        })
+    });
+    let Some(table) = table else {
+        return failure(&Error::invalid(
+            &click.target,
+            "is not a zentangle fill of the design",
+        ));
+    };
+    let [x, y] = click.at;
+    if !(x.is_finite() && y.is_finite()) {
+        return failure(&Error::invalid("at", "the click is not a finite point"));
+    }
+    let mut step = toml_edit::Table::new();
+    let mut at = toml_edit::Array::new();
+    at.push((x * 10.0).round() / 10.0);
+    at.push((y * 10.0).round() / 10.0);
+    step.insert("at", toml_edit::value(at));
+    step.insert("procedure", toml_edit::value(i64::from(click.procedure)));
+    if table.steps > 0 {
+        step.insert("after", toml_edit::value(true));
+    }
+    let text = Edit::parse(&good.text).and_then(|mut edit| {
+        edit.push_table(&format!("{}.manual", click.target), step, true)?;
+        Ok(edit.text())
+    });
+    match text {
+        Ok(text) => match apply(&app, text, Move::Gesture).await {
+            Ok(good) => changed(&app, &good),
+            Err(response) => response,
+        },
+        Err(e) => failure(&e),
     }
 }

@@ -202,7 +202,7 @@ impl Stroke {
             }
             Target::New(layer) => {
                 let table = new_table(&self.new_id(text, *layer), points.clone());
-                edit.push_table(&format!("layers[{layer}].lsystem"), table)?;
+                edit.push_table(&format!("layers[{layer}].lsystem"), table, false)?;
             }
         }
         Ok(edit.text())

@@ -31,6 +31,7 @@ use super::Context;
 use crate::error::{Error, Result};
 use crate::geom::density::{Density, Formula};
 use crate::geom::region::Region;
+use crate::rng::RandomStream;
 use crate::scene::{Color, Group, Style};
 use crate::spec::{Black, ZentangleSpec, ELEMENTS, PROCEDURES};
 use element::Shape;
@@ -109,30 +110,24 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         ));
     }
     let mut group = Group::new(group_id);
-    let mut k = 0;
-    emit(spec, &mut group, group_id, k, first, cx)?;
-    for (i, m) in spec.manual.iter().enumerate() {
-        k += 1;
-        let at = Point::new(m.at[0], m.at[1]);
-        let step = filling
-            .step_at(at, m.procedure, &mut rng)
-            .map_err(|e| match e {
-                Error::Invalid { message, .. } => {
-                    Error::invalid(cx.field(&format!("manual[{i}].at")), message)
-                }
-                other => other,
-            })?;
-        emit(spec, &mut group, group_id, k, step, cx)?;
-        cx.advance(1);
-    }
+    emit(spec, &mut group, group_id, 0, first, cx)?;
+    // The manual steps chosen for the blank tile, then the loop, then
+    // the manual steps that touch up what the loop left white.
+    let mut steps = Steps {
+        spec,
+        group: &mut group,
+        group_id,
+        k: 0,
+    };
+    steps.by_hand(false, &mut filling, &mut rng, cx)?;
     for _ in 0..spec.steps {
         let Some(step) = filling.step(&mut rng)? else {
             break;
         };
-        k += 1;
-        emit(spec, &mut group, group_id, k, step, cx)?;
-        cx.advance(1);
+        steps.emit(step, cx)?;
     }
+    steps.by_hand(true, &mut filling, &mut rng, cx)?;
+    let k = steps.k;
     cx.note(
         group_id,
         format!(
@@ -141,6 +136,53 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         ),
     );
     Ok(group)
+}
+
+/// The steps of one fill as they are drawn, numbered from 1.
+struct Steps<'s> {
+    spec: &'s ZentangleSpec,
+    group: &'s mut Group,
+    group_id: &'s str,
+    /// The number of the last step drawn.
+    k: usize,
+}
+
+impl Steps<'_> {
+    /// Draws the next step and counts it done.
+    fn emit(&mut self, step: Step, cx: &mut Context<'_>) -> Result<()> {
+        self.k += 1;
+        emit(self.spec, self.group, self.group_id, self.k, step, cx)?;
+        cx.advance(1);
+        Ok(())
+    }
+
+    /// The manual steps run `after` the loop (or before it), each in the
+    /// white region under its point; errors name the step's `at`.
+    fn by_hand(
+        &mut self,
+        after: bool,
+        filling: &mut Filling,
+        rng: &mut RandomStream,
+        cx: &mut Context<'_>,
+    ) -> Result<()> {
+        let spec = self.spec;
+        for (i, m) in spec
+            .manual
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.after == after)
+        {
+            let at = Point::new(m.at[0], m.at[1]);
+            let step = filling.step_at(at, m.procedure, rng).map_err(|e| match e {
+                Error::Invalid { message, .. } => {
+                    Error::invalid(cx.field(&format!("manual[{i}].at")), message)
+                }
+                other => other,
+            })?;
+            self.emit(step, cx)?;
+        }
+        Ok(())
+    }
 }
 
 /// Puts a step's lines and black parts into the group, as `step-K`.

@@ -131,6 +131,51 @@ fn manual_steps_come_first_and_name_their_region() {
 }
 
 #[test]
+fn manual_steps_after_the_loop_touch_up_what_it_left_white() {
+    let loop_only = scene("steps = 6\n");
+    let dump = |s: &Scene| crate::output::path_dump(s, 3);
+    // The first place on a 6 mm grid that the loop left white.
+    let touched = (1..22)
+        .flat_map(|i| (1..32).map(move |j| (f64::from(i) * 6.0, f64::from(j) * 6.0)))
+        .find_map(|(x, y)| {
+            let table = format!(
+                "steps = 6\nmanual = [{{ at = [{x}, {y}], procedure = 18, after = true }}]\n"
+            );
+            let text = text(&table);
+            let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+            build_scene(&spec).ok()
+        })
+        .expect("the loop leaves a white region somewhere");
+    // What the loop drew is as it was; one more step follows it.
+    let (before, after) = (dump(&loop_only), dump(&touched));
+    assert!(
+        after.starts_with(before.trim_end()),
+        "the loop's steps changed"
+    );
+    let steps = |s: &Scene| {
+        let mut ids = std::collections::BTreeSet::new();
+        s.layers[0]
+            .content
+            .visit_paths(kurbo::Affine::IDENTITY, &mut |p, _| {
+                ids.insert(p.id.split('.').nth(2).unwrap_or("").to_string());
+            });
+        ids
+    };
+    let new: Vec<String> = steps(&touched)
+        .difference(&steps(&loop_only))
+        .cloned()
+        .collect();
+    assert_eq!(new.len(), 1, "{new:?}");
+    assert!(new[0].ends_with("-p18"), "{new:?}");
+    // A touch-up where no white region is is named by its field.
+    let e = error("steps = 6\nmanual = [{ at = [500, 5], procedure = 2, after = true }]\n");
+    assert!(
+        e.contains("manual[0].at: (500, 5) lies in no white region"),
+        "{e}"
+    );
+}
+
+#[test]
 fn user_lines_split_the_page_first() {
     let s = scene("steps = 0\nlines = [[[0, 95], [128, 95]]]\n");
     let mut ids = Vec::new();
