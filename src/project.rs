@@ -17,7 +17,7 @@ use crate::motif::{user_drawing, Library};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot;
 use crate::scene::{Color, Group, Layer, Model, Pen, Scene};
-use crate::spec::{LayerSpec, MotifRef, ValidSpec};
+use crate::spec::{LayerItem, LayerSpec, MotifRef, Points, Table, ValidSpec, VoronoiSpec};
 use crate::vine::TriMesh;
 
 pub use crate::motif::{Note, Progress};
@@ -211,24 +211,7 @@ fn build(
     let mut cx = Context::new(spec, library, &flow, progress).with_cancel(cancel);
     let mut layers = Vec::with_capacity(spec.layers.len());
     for (index, (layer, id)) in spec.layers.iter().zip(&ids).enumerate() {
-        let depth = layer.depth.unwrap_or(index as i32);
-        cx.enter_layer((index, layer), id, depth);
-        let mut content = Group::new(format!("{id}.motifs"));
-        for item in layer.items() {
-            cancel.check()?;
-            let group = motif::build(&item, &mut cx)?;
-            let segments = group.segment_count();
-            cx.budget()
-                .take_segments(segments, || format!("`{}`", group.id))?;
-            content.push_group(group);
-        }
-        layers.push(Layer {
-            id: id.clone(),
-            name: layer.name.clone(),
-            pen: layer.pen,
-            depth,
-            content,
-        });
+        layers.push(build_layer((index, layer), id, &mut cx, cancel)?);
     }
     cx.adjust().apply_to_groups(&mut layers)?;
     let (notes, models) = cx.finish()?;
@@ -250,6 +233,113 @@ fn build(
         description: Some(spec.to_toml()),
     };
     Ok((scene, notes, models))
+}
+
+/// Builds layer `index` of the description, with SVG id `id`.
+fn build_layer<'a>(
+    (index, layer): (usize, &'a LayerSpec),
+    id: &'a str,
+    cx: &mut Context<'a>,
+    cancel: &Cancel,
+) -> Result<Layer> {
+    let depth = layer.depth.unwrap_or(index as i32);
+    cx.enter_layer((index, layer), id, depth);
+    let mut content = Group::new(format!("{id}.motifs"));
+    for item in layer.items() {
+        cancel.check()?;
+        let group = motif::build(&item, cx)?;
+        let segments = group.segment_count();
+        cx.budget()
+            .take_segments(segments, || format!("`{}`", group.id))?;
+        content.push_group(group);
+    }
+    Ok(Layer {
+        id: id.to_string(),
+        name: layer.name.clone(),
+        pen: layer.pen,
+        depth,
+        content,
+    })
+}
+
+/// The sites the `[[layers.voronoi]]` table `layers[layer].voronoi[table]`
+/// starts from, before relaxation: the sites it spreads, or the given
+/// points it keeps (those inside its region, each once). Millimetres from
+/// the top left corner inside the margins, as every point of a
+/// description; in the order the dots' ids `site-<i>` count them.
+///
+/// Written back as the table's `sites.points` ([`VoronoiSpec::pinned`]),
+/// they draw the same: the SVG is the same, byte for byte, but for the
+/// description it embeds. So a designer can pin the sites a distribution
+/// spread, then drag them one by one.
+///
+/// Only the table's sites are made, and the layers before it only when it
+/// fills their regions (`region.layer`).
+///
+/// ```
+/// let template = moyo::templates::get("voronoi-stained-glass")?;
+/// let (spec, library) = (template.spec()?, template.library()?);
+/// let sites = moyo::project::voronoi_sites(&spec, &library, 0, 0)?;
+/// let pinned = spec.edit(|s| {
+///     let table = &mut s.layers[0].voronoi[0];
+///     *table = table.pinned(sites.clone());
+/// })?;
+/// assert_eq!(moyo::project::voronoi_sites(&pinned, &library, 0, 0)?, sites);
+/// # Ok::<(), moyo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Invalid`] naming `layers[layer].voronoi[table]` when the
+/// description has no such table; otherwise what rendering reports up to
+/// that table's sites (its region, its image, given points none of which
+/// lies inside), with the line and column when the description came from
+/// TOML.
+pub fn voronoi_sites(
+    spec: &ValidSpec,
+    library: &Library,
+    layer: usize,
+    table: usize,
+) -> Result<Points> {
+    let field = format!("voronoi[{table}]");
+    let found = spec.layers.get(layer).and_then(|l| {
+        let item = l.items().into_iter().find(|item| item.field == field)?;
+        match item.table {
+            Table::Voronoi(v) => Some((l, item, v)),
+            _ => None,
+        }
+    });
+    let Some((layer_spec, item, voronoi)) = found else {
+        return Err(Error::invalid(
+            format!("layers[{layer}].{field}"),
+            "the description has no such voronoi table",
+        ));
+    };
+    let sites = table_sites(spec, library, (layer, layer_spec), &item, voronoi)
+        .map_err(|e| spec.locate(e))?;
+    Ok(sites.into_iter().map(|p| [p.x, p.y]).collect())
+}
+
+/// [`voronoi_sites`] of the table `item`, `voronoi`, of layer `index`.
+fn table_sites(
+    spec: &ValidSpec,
+    library: &Library,
+    (index, layer): (usize, &LayerSpec),
+    item: &LayerItem<'_>,
+    voronoi: &VoronoiSpec,
+) -> Result<Vec<Point>> {
+    let flow = Flow::new(&spec.lines);
+    let ids = layer_ids(spec);
+    let mut quiet = |_| {};
+    let mut cx = Context::new(spec, library, &flow, &mut quiet);
+    // The regions a table fills come from the layers built before it.
+    if !item.table.family().layers_read().is_empty() {
+        for (i, (earlier, id)) in spec.layers.iter().zip(&ids).enumerate().take(index) {
+            build_layer((i, earlier), id, &mut cx, Cancel::never())?;
+        }
+    }
+    let depth = layer.depth.unwrap_or(index as i32);
+    cx.enter_layer((index, layer), &ids[index], depth);
+    motif::voronoi_sites(item, voronoi, &mut cx)
 }
 
 /// Stable, unique, SVG-safe ids for the layers, made from their names.

@@ -740,3 +740,103 @@ fn templates_bring_their_own_files() {
         .stderr(predicate::str::contains("images/portrait.jpg"));
     assert!(!dir.path().join("c.svg").exists());
 }
+
+// ----------------------------------------------------- voronoi sites by hand
+
+/// A voronoi table's sites given by hand, in TOML.
+fn voronoi_with_points(sites: &str) -> String {
+    format!(
+        "version = 1\npage = {{ size = \"A5\", margin = 10 }}\n[[layers]]\nname = \"l\"\n\
+         [[layers.voronoi]]\ndraw = [\"sites\", \"cells\"]\n[layers.voronoi.sites]\n{sites}"
+    )
+}
+
+#[test]
+fn voronoi_sites_given_by_hand_are_drawn_and_bad_ones_named() {
+    let dir = tempdir();
+    // The last point lies off the page's drawable area (128 × 190 mm).
+    let text =
+        voronoi_with_points("points = [[10, 10], [60, 90], [60, 90], [100, 150], [300, 10]]\n");
+    fs::write(dir.path().join("v.toml"), text).unwrap();
+    moyo(&dir)
+        .args([
+            "render", "v.toml", "-o", "v.svg", "--png", "v.png", "--dpi", "30",
+        ])
+        .assert()
+        .success();
+    let svg = read_text(&dir.path().join("v.svg"));
+    for i in 0..3 {
+        assert!(
+            svg.contains(&format!("id=\"l.voronoi-0.sites.site-{i}\"")),
+            "site {i}"
+        );
+    }
+    assert!(
+        !svg.contains("site-3"),
+        "a repeated or outside point drew a site"
+    );
+    png_size(&fs::read(dir.path().join("v.png")).unwrap());
+    // A distribution beside the points, none inside: named with their place.
+    let text = voronoi_with_points("points = [[10, 10]]\ndistribution = \"grid\"\n");
+    render_fails(
+        &[("both.toml", &text)],
+        &["both.toml"],
+        &[
+            "both.toml:9:",
+            "layers[0].voronoi[0].sites.distribution: does not apply to given points",
+        ],
+    );
+    // (Found while rendering: the place has no file name.)
+    let text = voronoi_with_points("points = [[-10, 10], [10, 500]]\n");
+    render_fails(
+        &[("out.toml", &text)],
+        &["out.toml"],
+        &["8:10: layers[0].voronoi[0].sites.points: none of the 2 points lies inside the region"],
+    );
+}
+
+/// An SVG less the description it embeds.
+fn without_description(svg: &str) -> String {
+    let (head, rest) = svg
+        .split_once("<metadata>")
+        .expect("an embedded description");
+    let (_, tail) = rest.split_once("</metadata>").expect("its end");
+    format!("{head}{tail}")
+}
+
+#[test]
+fn voronoi_sites_pinned_as_points_draw_the_same_svg() {
+    // The stained-glass window: two tables (lead and glass) share their
+    // Poisson-disk sites, relaxed four times. Pinned as a designer would,
+    // in the text: the distribution and spacing give way to the points.
+    let template = templates::get("voronoi-stained-glass").unwrap();
+    let (spec, library) = (template.spec().unwrap(), template.library().unwrap());
+    let lead = moyo::project::voronoi_sites(&spec, &library, 0, 0).unwrap();
+    let glass = moyo::project::voronoi_sites(&spec, &library, 1, 0).unwrap();
+    assert_eq!(lead, glass);
+    assert!(lead.len() > 50, "{} sites", lead.len());
+    let points: Vec<String> = lead.iter().map(|[x, y]| format!("[{x}, {y}]")).collect();
+    let generated = "distribution = \"poisson\"\nspacing = 12\n";
+    assert_eq!(template.text.matches(generated).count(), 2);
+    let pinned = template
+        .text
+        .replace(generated, &format!("points = [{}]\n", points.join(", ")));
+    let dir = tempdir();
+    fs::write(dir.path().join("pinned.toml"), pinned).unwrap();
+    moyo(&dir)
+        .args(["render", "-t", "voronoi-stained-glass", "-o", "spread.svg"])
+        .assert()
+        .success();
+    moyo(&dir)
+        .args(["render", "pinned.toml", "-o", "pinned.svg"])
+        .assert()
+        .success();
+    let spread = read_text(&dir.path().join("spread.svg"));
+    let pinned = read_text(&dir.path().join("pinned.svg"));
+    assert_ne!(spread, pinned, "the embedded descriptions differ");
+    assert!(
+        without_description(&spread) == without_description(&pinned),
+        "the pinned sites draw another window"
+    );
+    assert!(path_count(&spread) > 50);
+}

@@ -2,7 +2,8 @@
 //! near each node of a square grid ([`jittered_grid`]), and as a
 //! Poisson-disk ("blue noise") set whose spacing may vary over the page
 //! ([`poisson_disk`]) — the seeds of stippling, scattered motifs and
-//! cell-like fills.
+//! cell-like fills — and points given by hand kept where they fall inside
+//! ([`inside`]).
 //!
 //! Every function keeps a point only where [`Region::contains`] says it is
 //! inside, so holes stay empty (points on the boundary may go either way).
@@ -369,6 +370,32 @@ const FLAT_TOLERANCE: f64 = 1e-3;
 /// ten times the flattening tolerance, so that the exact boundary is
 /// nowhere near another tile.
 const EDGE_MARGIN: f64 = 1e-2;
+
+/// The points of `points` that lie inside `region`, in their order: the
+/// same test the samplers keep their points by, so the points one of
+/// them made are all kept. Costs one lookup in a grid of tiles per point
+/// (and a winding number of the nearby segments near the boundary).
+///
+/// ```
+/// use kurbo::{Point, Rect};
+/// use moyo::geom::{region::Region, sample};
+///
+/// let square = Region::from_rect(Rect::new(0.0, 0.0, 10.0, 10.0))?;
+/// let points = [Point::new(5.0, 5.0), Point::new(15.0, 5.0), Point::new(1.0, 9.0)];
+/// assert_eq!(sample::inside(&square, &points), vec![points[0], points[2]]);
+/// # Ok::<(), moyo::Error>(())
+/// ```
+pub fn inside(region: &Region, points: &[Point]) -> Vec<Point> {
+    if region.is_empty() {
+        return Vec::new();
+    }
+    let containment = Containment::new(region, points.len().clamp(4096, 1 << 20));
+    points
+        .iter()
+        .copied()
+        .filter(|&p| containment.contains(p))
+        .collect()
+}
 
 /// [`Region::contains`] with the same answers, made cheap: a grid of tiles
 /// over the region's bounds knows which tiles the boundary keeps away

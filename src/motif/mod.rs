@@ -41,11 +41,11 @@ pub(crate) use flow::{flow_line, Flow};
 pub use lsystem::GrowingSketch;
 pub(crate) use stroke::{stroke_points, Stroke};
 
-use kurbo::{Affine, Rect};
+use kurbo::{Affine, Point, Rect};
 
 use crate::error::Result;
 use crate::scene::Group;
-use crate::spec::{LayerItem, Table};
+use crate::spec::{LayerItem, Table, VoronoiSpec};
 
 /// Builds one table of the layer being built into a group with id
 /// `<layer>.<item id>`, and counts its declared work as done.
@@ -69,6 +69,21 @@ pub fn build(item: &LayerItem<'_>, cx: &mut Context<'_>) -> Result<Group> {
     }?;
     cx.advance_to(done);
     Ok(group)
+}
+
+/// The sites the voronoi table `item` (`spec`) of the layer being built
+/// starts from, before relaxation (see [`crate::project::voronoi_sites`]).
+///
+/// # Errors
+/// As [`build`], up to the sites.
+pub(crate) fn voronoi_sites(
+    item: &LayerItem<'_>,
+    spec: &VoronoiSpec,
+    cx: &mut Context<'_>,
+) -> Result<Vec<Point>> {
+    let id = format!("{}.{}", cx.layer_id(), item.id);
+    cx.enter_item(&item.field);
+    voronoi::starting_sites(spec, &id, cx)
 }
 
 /// The map that puts `drawn` (a drawing's own units, already y down) into

@@ -450,12 +450,12 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
     let size = |mm: f64| mm.clamp(10.0, 10_000.0);
     let sites = match job.points {
         Some(n) => SitesSpec {
-            distribution: Distribution::Uniform,
+            distribution: Some(Distribution::Uniform),
             count: Some(n),
             ..SitesSpec::default()
         },
         None => SitesSpec {
-            distribution: Distribution::Poisson,
+            distribution: Some(Distribution::Poisson),
             spacing: Some(job.spacing.unwrap_or(FillJob::DEFAULT_SPACING)),
             ..SitesSpec::default()
         },

@@ -171,3 +171,46 @@ fn palettes_are_named_and_their_slots_checked() {
     assert!(parse(&text.replace("@6", "@5")).is_ok());
     assert!(parse(&text.replace("@6", "sakura-iro")).is_ok());
 }
+
+#[test]
+fn voronoi_sites_read_and_write_back_with_or_without_points() {
+    let table = |sites: &str| {
+        format!("version = 1\n[[layers]]\nname = \"v\"\n[[layers.voronoi]]\n[layers.voronoi.sites]\n{sites}")
+    };
+    // No distribution and no points: poisson, written out as before.
+    let s = parse(&table("spacing = 8\n")).unwrap();
+    assert_eq!(
+        s.layers[0].voronoi[0].sites,
+        SitesSpec {
+            spacing: Some(8.0),
+            ..SitesSpec::default()
+        }
+    );
+    assert!(
+        s.to_toml().contains("distribution = \"poisson\""),
+        "{}",
+        s.to_toml()
+    );
+    // Points: no distribution, none written; the points come back exactly.
+    let s = parse(&table("points = [[1.5, 2], [0.1, 1e-3], [3, 4]]\n")).unwrap();
+    let sites = &s.layers[0].voronoi[0].sites;
+    assert_eq!(sites.distribution, None);
+    assert_eq!(
+        sites.points.as_deref(),
+        Some(&[[1.5, 2.0], [0.1, 1e-3], [3.0, 4.0]][..])
+    );
+    let toml = s.to_toml();
+    assert!(!toml.contains("distribution"), "{toml}");
+    assert_eq!(parse(&toml).unwrap(), s);
+    let json = serde_json::to_string(s.spec()).unwrap();
+    assert_eq!(SceneSpec::parse(&json, Format::Json).unwrap(), s);
+    // A wrong point names its place in the text.
+    let msg = parse(&table("points = [[1, 2],\n  [3, inf]]\n"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.starts_with("7:")
+            && msg.contains("layers[0].voronoi[0].sites.points[1]: y must be a finite number"),
+        "{msg}"
+    );
+}

@@ -4,14 +4,16 @@
 //!
 //! The region is the page inside its margins unless a `[region]` names a
 //! circle, a polygon or the closed shapes of an SVG file, less any
-//! `holes`. Sites are spread by `sites.distribution` and then moved
-//! towards their cells' centroids `relax` times (Lloyd).
+//! `holes`. Sites are spread by `sites.distribution`, or given by hand as
+//! `sites.points`, and then moved towards their cells' centroids `relax`
+//! times (Lloyd).
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::layer::Family;
 use super::region::RegionSpec;
-use super::validate::range;
+use super::validate::{point, range};
+use super::Points;
 use crate::error::{Error, Result};
 use crate::geom::density::Formula;
 
@@ -25,7 +27,7 @@ pub struct VoronoiSpec {
     /// Where the pattern lies (default: the page inside its margins).
     #[serde(default, skip_serializing_if = "RegionSpec::is_page")]
     pub region: RegionSpec,
-    /// How the sites are spread.
+    /// How the sites are spread, or where they are given.
     #[serde(default)]
     pub sites: SitesSpec,
     /// Relaxation: at most this many times each site moves to its cell's
@@ -101,18 +103,30 @@ impl RelaxationMethod {
     }
 }
 
-/// How sites are spread over the region.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// How sites are spread over the region, or where they are.
+///
+/// Either a `distribution` spreads them (with `count`, `spacing`,
+/// `jitter`, weighed by `image` and `density`), or `points` gives them by
+/// hand. [`SitesSpec::default`] is the `poisson` distribution, as an empty
+/// `[layers.voronoi.sites]` is; a table given in code with `points` sets
+/// `distribution` to `None` (see [`VoronoiSpec::pinned`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+// Derived into inherent functions, wrapped by the impls below: parsing
+// reads a missing `distribution` as `poisson` unless `points` is given.
+#[serde(remote = "Self", deny_unknown_fields)]
 pub struct SitesSpec {
-    /// The distribution (default `"poisson"`).
-    #[serde(default)]
-    pub distribution: Distribution,
+    /// The distribution (default `"poisson"`; not with `points`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distribution: Option<Distribution>,
     /// With `"uniform"`: how many sites (1–1,000,000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub count: Option<u32>,
     /// With `"grid"` and `"poisson"`: the distance between sites, mm
-    /// (0.1–10,000; default 10).
+    /// (0.1–10,000; default 10). With `points`, only when the sites relax
+    /// with `"lbg"` (the distance it aims at where the density is 1) or
+    /// weighted by `image` or `density` (half of it is the finest scale
+    /// the density is weighed on; default: the spacing the points would
+    /// have evenly spread, √(area ÷ their number)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spacing: Option<f64>,
     /// With `"grid"`: how far each site may move from its grid point, as a
@@ -124,7 +138,8 @@ pub struct SitesSpec {
     /// centred: `uniform` sites fall in proportion to darkness, `grid`
     /// points are kept in proportion to it, `poisson` spacing grows to
     /// `spacing × 10` where the image is white; and Lloyd steps weigh each
-    /// cell by darkness (weighted Voronoi stippling, Secord 2002).
+    /// cell by darkness (weighted Voronoi stippling, Secord 2002). With
+    /// `points` it only weighs the steps, so it needs `relax`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub image: Option<String>,
     /// Density as a formula of the position, used as `image` is (and
@@ -134,6 +149,55 @@ pub struct SitesSpec {
     /// [`crate::geom::density::Formula`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<String>,
+    /// The sites given by hand, `[[x, y], …]` in mm from the top left
+    /// corner inside the margins, as every point of a description (1 to
+    /// 1,000,000 points, each within ±100,000 mm); instead of
+    /// `distribution`, `count` and `jitter`, and of `spacing` unless
+    /// relaxation reads it (see there). They are the sites
+    /// exactly, in their order (the dots' ids `site-<i>` count them), less
+    /// those outside the region, which are left out (a dragged site may
+    /// land there; at least one must be inside), and less repeats: a point
+    /// within a millionth of a millimetre of an earlier one is the same
+    /// site ([`crate::geom::voronoi::MERGE_DISTANCE`]). `relax` moves them
+    /// as it moves spread sites. (`moyo fill` spreads its sites from its
+    /// options and takes none given.)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points: Option<Points>,
+}
+
+impl Default for SitesSpec {
+    /// The `poisson` distribution with every other key left out.
+    fn default() -> SitesSpec {
+        SitesSpec {
+            distribution: Some(Distribution::Poisson),
+            count: None,
+            spacing: None,
+            jitter: None,
+            image: None,
+            density: None,
+            points: None,
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for SitesSpec {
+    /// A missing `distribution` is `poisson` unless `points` is given: a
+    /// description without points reads as it always has (and writes back
+    /// with `distribution = "poisson"`), while one with points keeps
+    /// `None`, so that a distribution given beside them is refused.
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
+        let mut sites = SitesSpec::deserialize(deserializer)?;
+        if sites.points.is_none() && sites.distribution.is_none() {
+            sites.distribution = Some(Distribution::Poisson);
+        }
+        Ok(sites)
+    }
+}
+
+impl Serialize for SitesSpec {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        SitesSpec::serialize(self, serializer)
+    }
 }
 
 /// A distribution of sites.
@@ -195,37 +259,19 @@ impl SitesSpec {
         self.image.is_some() || self.density.is_some()
     }
 
-    /// `lbg`: the sites relax by weighted Linde-Buzo-Gray, whose target
-    /// spacing is `spacing` whatever the distribution.
-    fn check(&self, f: &str, lbg: bool) -> Result<()> {
-        let allowed: &[&str] = match (self.distribution, lbg) {
-            (Distribution::Uniform, false) => &["count"],
-            (Distribution::Uniform, true) => &["count", "spacing"],
-            (Distribution::Grid, _) => &["spacing", "jitter"],
-            (Distribution::Poisson, _) => &["spacing"],
-        };
-        for (key, set) in [
-            ("count", self.count.is_some()),
-            ("spacing", self.spacing.is_some()),
-            ("jitter", self.jitter.is_some()),
-        ] {
-            if set && !allowed.contains(&key) {
-                return Err(Error::invalid(
-                    format!("{f}.{key}"),
-                    format!(
-                        "does not apply to the {} distribution{} (it takes {})",
-                        self.distribution.name(),
-                        if lbg { "" } else { " with lloyd relaxation" },
-                        allowed.join(", ")
-                    ),
-                ));
-            }
-        }
-        if self.distribution == Distribution::Uniform && self.count.is_none() {
-            return Err(Error::invalid(
-                format!("{f}.count"),
-                "the uniform distribution needs a count (1–1,000,000)",
-            ));
+    /// The distribution that spreads the sites (`poisson` when none is
+    /// given; with `points` there is none to speak of).
+    pub fn distribution(&self) -> Distribution {
+        self.distribution.unwrap_or_default()
+    }
+
+    /// `relax`: the most relaxation steps; `lbg`: the sites relax by
+    /// weighted Linde-Buzo-Gray, whose target spacing is `spacing`
+    /// whatever the distribution.
+    fn check(&self, f: &str, relax: u32, lbg: bool) -> Result<()> {
+        match &self.points {
+            Some(points) => self.check_given(f, points, relax, lbg)?,
+            None => self.check_spread(f, lbg)?,
         }
         if let Some(n) = self.count {
             range(&format!("{f}.count"), n, 1, MAX_SITES as u32)?;
@@ -247,6 +293,91 @@ impl SitesSpec {
         }
         Ok(())
     }
+
+    /// Sites given by hand: the keys that spread sites do not apply, and
+    /// those that weigh or scale relaxation only when the sites relax.
+    fn check_given(&self, f: &str, points: &[[f64; 2]], relax: u32, lbg: bool) -> Result<()> {
+        for (key, set) in [
+            ("distribution", self.distribution.is_some()),
+            ("count", self.count.is_some()),
+            ("jitter", self.jitter.is_some()),
+        ] {
+            if set {
+                return Err(Error::invalid(
+                    format!("{f}.{key}"),
+                    "does not apply to given points: they are the sites (give one or the other)",
+                ));
+            }
+        }
+        for (key, set) in [
+            ("spacing", self.spacing.is_some()),
+            ("image", self.image.is_some()),
+            ("density", self.density.is_some()),
+        ] {
+            if set && relax == 0 {
+                return Err(Error::invalid(
+                    format!("{f}.{key}"),
+                    "does nothing to given points without relax steps (give relax = 1–1000)",
+                ));
+            }
+        }
+        if self.spacing.is_some() && !lbg && !self.is_weighted() {
+            return Err(Error::invalid(
+                format!("{f}.spacing"),
+                "does not apply to given points relaxed by unweighted lloyd steps (it takes \
+                 relaxation = \"lbg\", or an image or a density)",
+            ));
+        }
+        let field = format!("{f}.points");
+        if points.is_empty() {
+            return Err(Error::invalid(field, "needs at least one point [x, y]"));
+        }
+        if points.len() > MAX_SITES {
+            return Err(Error::invalid(
+                field,
+                format!("at most {MAX_SITES} sites, got {}", points.len()),
+            ));
+        }
+        for (i, p) in points.iter().enumerate() {
+            point(&format!("{field}[{i}]"), *p)?;
+        }
+        Ok(())
+    }
+
+    /// Sites spread by a distribution: the keys it takes.
+    fn check_spread(&self, f: &str, lbg: bool) -> Result<()> {
+        let distribution = self.distribution();
+        let allowed: &[&str] = match (distribution, lbg) {
+            (Distribution::Uniform, false) => &["count"],
+            (Distribution::Uniform, true) => &["count", "spacing"],
+            (Distribution::Grid, _) => &["spacing", "jitter"],
+            (Distribution::Poisson, _) => &["spacing"],
+        };
+        for (key, set) in [
+            ("count", self.count.is_some()),
+            ("spacing", self.spacing.is_some()),
+            ("jitter", self.jitter.is_some()),
+        ] {
+            if set && !allowed.contains(&key) {
+                return Err(Error::invalid(
+                    format!("{f}.{key}"),
+                    format!(
+                        "does not apply to the {} distribution{} (it takes {})",
+                        distribution.name(),
+                        if lbg { "" } else { " with lloyd relaxation" },
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+        if distribution == Distribution::Uniform && self.count.is_none() {
+            return Err(Error::invalid(
+                format!("{f}.count"),
+                "the uniform distribution needs a count (1–1,000,000)",
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl Distribution {
@@ -259,11 +390,57 @@ impl Distribution {
     }
 }
 
+impl VoronoiSpec {
+    /// This table with `points` as its sites, given by hand, and nothing
+    /// else changed that it draws: when `points` are the sites it spreads
+    /// ([`crate::project::voronoi_sites`]), the pinned table draws the
+    /// same lines, byte for byte. The keys that spread sites go
+    /// (`distribution`, `count`, `jitter`); `image` and `density` stay
+    /// when the sites relax, and `spacing` (the default written out,
+    /// where the distribution used it) when relaxation reads it.
+    ///
+    /// ```
+    /// use moyo::spec::{Distribution, VoronoiSpec};
+    /// let spec = moyo::templates::get("voronoi-stained-glass")?.spec()?;
+    /// let table = &spec.layers[0].voronoi[0];
+    /// let pinned = table.pinned(vec![[10.0, 20.0], [30.0, 40.0]]);
+    /// assert_eq!(pinned.sites.points.as_deref(), Some(&[[10.0, 20.0], [30.0, 40.0]][..]));
+    /// assert_eq!((pinned.sites.distribution, pinned.relax), (None, table.relax));
+    /// # Ok::<(), moyo::Error>(())
+    /// ```
+    pub fn pinned(&self, points: Points) -> VoronoiSpec {
+        let s = &self.sites;
+        let relaxes = self.relax > 0;
+        let lbg = self.relaxation == RelaxationMethod::Lbg;
+        let spacing = if !(relaxes && (lbg || s.is_weighted())) {
+            None
+        } else if s.points.is_some() || s.distribution() == Distribution::Uniform {
+            // Unset, relaxation takes the spacing of evenly spread sites,
+            // as it does for these: keep it unset.
+            s.spacing
+        } else {
+            Some(s.spacing())
+        };
+        VoronoiSpec {
+            sites: SitesSpec {
+                distribution: None,
+                count: None,
+                spacing,
+                jitter: None,
+                image: s.image.clone().filter(|_| relaxes),
+                density: s.density.clone().filter(|_| relaxes),
+                points: Some(points),
+            },
+            ..self.clone()
+        }
+    }
+}
+
 impl Family for VoronoiSpec {
     fn check(&self, f: &str) -> Result<()> {
         self.region.check(&format!("{f}.region"))?;
         let lbg = self.relaxation == RelaxationMethod::Lbg;
-        self.sites.check(&format!("{f}.sites"), lbg)?;
+        self.sites.check(&format!("{f}.sites"), self.relax, lbg)?;
         range(&format!("{f}.relax"), self.relax, 0, MAX_RELAX)?;
         if lbg && self.relax == 0 {
             return Err(Error::invalid(

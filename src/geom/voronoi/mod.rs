@@ -38,7 +38,8 @@
 //!   an empty cell and [`SiteStatus::MergedInto`]. So there is exactly one
 //!   non-empty cell per distinct site (inside the region). In a Lloyd step a
 //!   merged site stays where it is, so it separates from its owner as the
-//!   owner moves.
+//!   owner moves. [`distinct`] leaves out the sites that would merge, for
+//!   a caller whose sites come from a person (or a file) and may repeat.
 //! - *Sites outside the region* follow [`OutsideSites`]: kept by default
 //!   (the diagram of all sites, seen through the region: cells still tile
 //!   the region, and an outside site's cell is the part of its cell that
@@ -856,45 +857,15 @@ impl Prepared {
                 }
             }
         }
-        // Near-duplicates: owners hashed by their MERGE_DISTANCE square (a
-        // list per square, chained through `next`), looked up only, never
-        // iterated, so the outcome depends on the input order alone.
-        let mut heads: HashMap<(i64, i64), u32, BuildHasherDefault<SquareHasher>> =
-            HashMap::with_capacity_and_hasher(points.len(), Default::default());
-        let mut next = vec![u32::MAX; points.len()];
-        let key = |p: Point| {
-            (
-                (p.x / MERGE_DISTANCE).floor() as i64,
-                (p.y / MERGE_DISTANCE).floor() as i64,
-            )
-        };
+        let mut merger = Merger::new(points.len());
         let mut owners = Vec::with_capacity(sites.len());
-        for (i, &p) in points.iter().enumerate() {
-            if status[i] == SiteStatus::Dropped {
+        for (i, status) in status.iter_mut().enumerate() {
+            if *status == SiteStatus::Dropped {
                 continue;
             }
-            let (kx, ky) = key(p);
-            let mut owner = None;
-            'search: for dx in -1..=1 {
-                for dy in -1..=1 {
-                    let mut j = heads.get(&(kx + dx, ky + dy)).copied().unwrap_or(u32::MAX);
-                    while j != u32::MAX {
-                        if points[j as usize].distance(p) < MERGE_DISTANCE {
-                            owner = Some(j as usize);
-                            break 'search;
-                        }
-                        j = next[j as usize];
-                    }
-                }
-            }
-            match owner {
-                Some(j) => status[i] = SiteStatus::MergedInto(j),
-                None => {
-                    let head = heads.entry((kx, ky)).or_insert(u32::MAX);
-                    next[i] = *head;
-                    *head = i as u32;
-                    owners.push(i);
-                }
+            match merger.owner(&points, i) {
+                Some(j) => *status = SiteStatus::MergedInto(j),
+                None => owners.push(i),
             }
         }
         Ok(Prepared {
@@ -902,6 +873,76 @@ impl Prepared {
             owners,
             points,
         })
+    }
+}
+
+/// `sites` less those within [`MERGE_DISTANCE`] of an earlier one, in
+/// order: the sites that own a cell of their diagram (when all lie
+/// inside), each once. A diagram, a triangulation or a tour of these has
+/// no empty cell, no coincident vertices, no step of length 0.
+///
+/// ```
+/// use kurbo::Point;
+/// use moyo::geom::voronoi::distinct;
+///
+/// let sites = [Point::new(1.0, 1.0), Point::new(2.0, 2.0), Point::new(1.0, 1.0 + 1e-9)];
+/// assert_eq!(distinct(&sites), vec![sites[0], sites[1]]);
+/// ```
+pub fn distinct(sites: &[Point]) -> Vec<Point> {
+    let mut merger = Merger::new(sites.len());
+    (0..sites.len())
+        .filter(|&i| merger.owner(sites, i).is_none())
+        .map(|i| sites[i])
+        .collect()
+}
+
+/// The search for near-duplicates: the sites that own a cell so far,
+/// hashed by their [`MERGE_DISTANCE`] square (a list per square, chained
+/// through `next`), looked up only, never iterated, so the outcome
+/// depends on the input order alone.
+struct Merger {
+    heads: HashMap<(i64, i64), u32, BuildHasherDefault<SquareHasher>>,
+    next: Vec<u32>,
+}
+
+impl Merger {
+    /// A search over at most `n` sites (indices below `n`, at most
+    /// `u32::MAX`: the callers cap the sites far below).
+    fn new(n: usize) -> Merger {
+        Merger {
+            heads: HashMap::with_capacity_and_hasher(n, Default::default()),
+            next: vec![u32::MAX; n],
+        }
+    }
+
+    /// The earlier owner within [`MERGE_DISTANCE`] of `points[i]`, or
+    /// `None` after making site `i` an owner itself. Sites are asked in
+    /// increasing order.
+    fn owner(&mut self, points: &[Point], i: usize) -> Option<usize> {
+        let p = points[i];
+        let (kx, ky) = (
+            (p.x / MERGE_DISTANCE).floor() as i64,
+            (p.y / MERGE_DISTANCE).floor() as i64,
+        );
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                let mut j = self
+                    .heads
+                    .get(&(kx + dx, ky + dy))
+                    .copied()
+                    .unwrap_or(u32::MAX);
+                while j != u32::MAX {
+                    if points[j as usize].distance(p) < MERGE_DISTANCE {
+                        return Some(j as usize);
+                    }
+                    j = self.next[j as usize];
+                }
+            }
+        }
+        let head = self.heads.entry((kx, ky)).or_insert(u32::MAX);
+        self.next[i] = *head;
+        *head = i as u32;
+        None
     }
 }
 

@@ -2,9 +2,13 @@
 //! stipple dots and a one-line tour, inside a region (see
 //! [`VoronoiSpec`]).
 //!
-//! Sites are spread over the region ([`crate::geom::sample`]), relaxed
+//! Sites are spread over the region ([`crate::geom::sample`]) or given by
+//! hand (`sites.points`: those inside the region, each once), relaxed
 //! (Lloyd), and the diagram is clipped to the region exactly
-//! ([`crate::geom::voronoi`]). Each kind listed in `draw` is a group
+//! ([`crate::geom::voronoi`]). Only the spreading draws random numbers, so
+//! the sites a distribution spread, given back as points
+//! ([`crate::project::voronoi_sites`]), draw the same pattern. Each kind
+//! listed in `draw` is a group
 //! `<layer>.<pattern>.<kind>`:
 //! - `cells`: the cell network, each edge between two cells drawn once
 //!   (a plotter would draw shared edges twice if every cell were closed),
@@ -32,8 +36,8 @@ use crate::geom::density::{Density, Formula};
 use crate::geom::offset::offset;
 use crate::geom::region::Region;
 use crate::geom::voronoi::{
-    constrained_delaunay, delaunay_edges, relax, CellOptions, Diagram, Domain, Lbg, Relaxation,
-    Relaxed,
+    constrained_delaunay, delaunay_edges, distinct, relax, CellOptions, Diagram, Domain, Lbg,
+    Relaxation, Relaxed,
 };
 use crate::geom::{sample, tour, TOLERANCE};
 use crate::rng::RandomStream;
@@ -43,39 +47,16 @@ use crate::spec::{Distribution, Draw, RelaxationMethod, VoronoiSpec, MAX_SITES};
 /// Builds a Voronoi pattern into a group with id `group_id`.
 ///
 /// # Errors
-/// A region that encloses nothing; more sites than [`MAX_SITES`]; the path
-/// budget; an SVG region file that was not loaded.
+/// A region that encloses nothing; more sites than [`MAX_SITES`]; given
+/// points none of which lies inside the region; the path budget; an SVG
+/// region file that was not loaded.
 pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let region = region(&spec.region, cx)?;
     let domain = Domain::new(&region, TOLERANCE)?;
     let options = CellOptions::DEFAULT.with_max_sites(MAX_SITES);
-    // Sites come from the table's own id, not the layer's: tables with the
-    // same id in two layers share their sites, so one window's lead and
-    // glass can go to two pens.
-    let table_id = group_id.rsplit('.').next().unwrap_or(group_id);
-    let mut rng = cx.stream(&format!("voronoi/{table_id}"));
-    let image = match &spec.sites.image {
-        Some(name) => Some(cx.library().image(name)?),
-        None => None,
-    };
-    let formula = match &spec.sites.density {
-        Some(text) => Some(Formula::parse(text).map_err(|e| site_error(e, spec, 0.0, cx))?),
-        None => None,
-    };
-    let density = spec.sites.is_weighted().then(|| {
-        let mut d = Density::new(region.bounds());
-        if let Some(img) = image {
-            d = d.with_image(img);
-        }
-        if let Some(f) = &formula {
-            d = d.with_formula(f);
-        }
-        d
-    });
-    if let Some(d) = &density {
-        check_density(spec, d, &region, cx)?;
-    }
-    let sites = sites(spec, &region, density.as_ref(), &mut rng, cx)?;
+    let formula = formula(spec, cx)?;
+    let density = density(spec, &region, formula.as_ref(), cx)?;
+    let sites = sites(spec, group_id, &region, density.as_ref(), cx)?;
     let sites = relaxed(
         spec,
         sites,
@@ -138,6 +119,55 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
     }
     cx.advance(1);
     Ok(group)
+}
+
+/// The sites the pattern with group id `group_id` starts from, before
+/// relaxation: the ones [`build`] spreads or is given (see
+/// [`crate::project::voronoi_sites`]).
+///
+/// # Errors
+/// As [`build`], up to the sites.
+pub(super) fn starting_sites(
+    spec: &VoronoiSpec,
+    group_id: &str,
+    cx: &Context<'_>,
+) -> Result<Vec<Point>> {
+    let region = region(&spec.region, cx)?;
+    let formula = formula(spec, cx)?;
+    let density = density(spec, &region, formula.as_ref(), cx)?;
+    sites(spec, group_id, &region, density.as_ref(), cx)
+}
+
+/// The density formula of the sites, parsed.
+fn formula(spec: &VoronoiSpec, cx: &Context<'_>) -> Result<Option<Formula>> {
+    spec.sites
+        .density
+        .as_deref()
+        .map(|text| Formula::parse(text).map_err(|e| site_error(e, spec, 0.0, cx)))
+        .transpose()
+}
+
+/// What weighs the sites, when `image` or `density` is given: the image
+/// times the formula over the region's bounds, checked to be above 0
+/// somewhere.
+fn density<'d, 'a: 'd>(
+    spec: &VoronoiSpec,
+    region: &Region,
+    formula: Option<&'d Formula>,
+    cx: &Context<'a>,
+) -> Result<Option<Density<'d>>> {
+    if !spec.sites.is_weighted() {
+        return Ok(None);
+    }
+    let mut density = Density::new(region.bounds());
+    if let Some(name) = &spec.sites.image {
+        density = density.with_image(cx.library().image(name)?);
+    }
+    if let Some(f) = formula {
+        density = density.with_formula(f);
+    }
+    check_density(spec, &density, region, cx)?;
+    Ok(Some(density))
 }
 
 /// The regions the pattern offers later layers to fill: the closed shapes
@@ -204,12 +234,13 @@ fn relaxed(
     }
     .with_settled(spec.converge.unwrap_or(0.0));
     // Cells weigh what they hold to the scale the density changes on:
-    // an image's pixel, and at most half the spacing of the sites.
-    let spacing = match (spec.sites.distribution, spec.sites.count) {
-        (Distribution::Uniform, Some(n)) if spec.sites.spacing.is_none() => {
-            (domain.area() / n as f64).sqrt()
-        }
-        _ => spec.sites.spacing(),
+    // an image's pixel, and at most half the spacing of the sites — that
+    // of `count` (or the given) sites spread evenly when none is given.
+    let s = &spec.sites;
+    let spacing = match (s.spacing, &s.points, s.distribution(), s.count) {
+        (None, Some(_), _, _) => (domain.area() / sites.len() as f64).sqrt(),
+        (None, None, Distribution::Uniform, Some(n)) => (domain.area() / n as f64).sqrt(),
+        _ => s.spacing(),
     };
     let detail = density
         .and_then(Density::pixel)
@@ -317,29 +348,38 @@ fn numbered(id: &str, what: &str, paths: Vec<BezPath>) -> Vec<(String, BezPath)>
         .collect()
 }
 
-/// The sites of the pattern, spread as the description says, denser where
-/// `density` is dark.
+/// The sites of the pattern, given or spread as the description says,
+/// denser where `density` is dark.
 fn sites(
     spec: &VoronoiSpec,
+    group_id: &str,
     region: &Region,
     density: Option<&Density<'_>>,
-    rng: &mut RandomStream,
     cx: &Context<'_>,
 ) -> Result<Vec<Point>> {
     let s = &spec.sites;
+    if let Some(points) = &s.points {
+        return given(points, region, cx);
+    }
+    // Sites come from the table's own id, not the layer's: tables with the
+    // same id in two layers share their sites, so one window's lead and
+    // glass can go to two pens. Nothing after the sites draws from this
+    // stream: the sites it spread, given as points, draw the same pattern.
+    let table_id = group_id.rsplit('.').next().unwrap_or(group_id);
+    let mut rng = cx.stream(&format!("voronoi/{table_id}"));
     // The samplers name their own arguments; the description's fields are
     // these.
     let renamed = |e| site_error(e, spec, region.area(), cx);
-    match (s.distribution, density) {
+    match (s.distribution(), density) {
         (Distribution::Uniform, None) => {
-            sample::uniform(region, s.count.unwrap_or(1) as usize, rng).map_err(renamed)
+            sample::uniform(region, s.count.unwrap_or(1) as usize, &mut rng).map_err(renamed)
         }
         (Distribution::Uniform, Some(d)) => {
-            darkness_sampled(region, s.count.unwrap_or(1) as usize, d, rng, cx)
+            darkness_sampled(region, s.count.unwrap_or(1) as usize, d, &mut rng, cx)
         }
         (Distribution::Grid, _) => {
-            let mut grid =
-                sample::jittered_grid(region, s.spacing(), s.jitter(), rng).map_err(renamed)?;
+            let mut grid = sample::jittered_grid(region, s.spacing(), s.jitter(), &mut rng)
+                .map_err(renamed)?;
             if let Some(d) = density {
                 grid.retain(|p| rng.unit() < d.at(*p));
             }
@@ -347,16 +387,35 @@ fn sites(
         }
         (Distribution::Poisson, None) => {
             let r = s.spacing();
-            sample::poisson_disk(region, &|_| r, r..=r, rng, MAX_SITES).map_err(renamed)
+            sample::poisson_disk(region, &|_| r, r..=r, &mut rng, MAX_SITES).map_err(renamed)
         }
         (Distribution::Poisson, Some(d)) => {
             // Area per site in proportion to lightness: the radius grows
             // as 1/√darkness, up to ten times the spacing on white.
             let r = s.spacing();
             let radius = |p: Point| r / d.at(p).max(0.01).sqrt();
-            sample::poisson_disk(region, &radius, r..=10.0 * r, rng, MAX_SITES).map_err(renamed)
+            sample::poisson_disk(region, &radius, r..=10.0 * r, &mut rng, MAX_SITES)
+                .map_err(renamed)
         }
     }
+}
+
+/// The sites given by hand: those inside the region (a dragged site may
+/// land outside), each once (a repeated point would be a second site with
+/// an empty cell, a dot drawn twice, a tour's step of length 0).
+fn given(points: &[[f64; 2]], region: &Region, cx: &Context<'_>) -> Result<Vec<Point>> {
+    let points: Vec<Point> = points.iter().map(|&[x, y]| Point::new(x, y)).collect();
+    let sites = distinct(&sample::inside(region, &points));
+    if sites.is_empty() {
+        return Err(Error::invalid(
+            cx.field("sites.points"),
+            format!(
+                "none of the {} points lies inside the region: there is no site to draw",
+                points.len()
+            ),
+        ));
+    }
+    Ok(sites)
 }
 
 /// An error of the samplers or of relaxation in the description's terms:
@@ -373,9 +432,11 @@ fn site_error(e: Error, spec: &VoronoiSpec, area: f64, cx: &Context<'_>) -> Erro
             Error::invalid(cx.field(&format!("sites.{name}")), message)
         }
         Error::Budget { .. } => {
-            let name = if s.distribution == Distribution::Uniform && s.spacing.is_none() {
+            let name = if s.distribution == Some(Distribution::Uniform) && s.spacing.is_none() {
                 "count"
             } else {
+                // Given points are at most MAX_SITES: only LBG, which
+                // splits sites by the spacing, can place more.
                 "spacing"
             };
             Error::invalid(

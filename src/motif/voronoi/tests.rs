@@ -528,3 +528,292 @@ fn lbg_sets_the_count_from_the_density_and_the_spacing() {
         assert!(note.contains("LBG relaxation: settled in"), "{note}");
     }
 }
+
+/// The centres of the site dots, in the order drawn.
+fn dots(s: &Scene) -> Vec<Point> {
+    paths_of(s, "sites")
+        .iter()
+        .map(|d| d.bounding_box().center())
+        .collect()
+}
+
+/// A table with the lines `rest` whose sites are `points`, in TOML; more
+/// keys of the sites may follow.
+fn given(points: &[(f64, f64)], rest: &str) -> String {
+    let list: Vec<String> = points.iter().map(|(x, y)| format!("[{x}, {y}]")).collect();
+    format!(
+        "{rest}[layers.voronoi.sites]\npoints = [{}]\n",
+        list.join(", ")
+    )
+}
+
+#[test]
+fn given_points_are_the_sites_one_cell_each() {
+    // Inside the page (128 × 190 mm), two outside it, one repeated, one
+    // a hair from another: seven sites.
+    let inside = [
+        (10.0, 10.0),
+        (100.0, 20.0),
+        (64.0, 95.0),
+        (20.0, 170.0),
+        (110.0, 180.0),
+        (40.0, 60.0),
+        (90.0, 120.0),
+    ];
+    let mut points = inside.to_vec();
+    points.insert(2, (-5.0, 50.0));
+    points.insert(5, (64.0, 95.0));
+    points.push((140.0, 10.0));
+    points.push((40.0, 60.0 + 1e-9));
+    let s = scene(&given(
+        &points,
+        "draw = [\"inset\", \"sites\"]\ninset = 0.01\n",
+    ));
+    // The sites are the points inside, each once, in their order.
+    let expected: Vec<Point> = inside.iter().map(|&p| Point::from(p)).collect();
+    let sites = dots(&s);
+    assert_eq!(sites.len(), expected.len(), "{sites:?}");
+    for (a, b) in sites.iter().zip(&expected) {
+        assert!(a.distance(*b) < 1e-9, "{a:?} ≠ {b:?}");
+    }
+    // One cell a site, and each cell holds exactly one given point.
+    let cells = paths_of(&s, "inset");
+    assert_eq!(cells.len(), expected.len());
+    for cell in &cells {
+        let held = expected.iter().filter(|p| cell.contains(**p)).count();
+        assert_eq!(held, 1, "a cell holds {held} sites");
+    }
+    // The cells tile the page (less 0.01 mm along every edge).
+    let area: f64 = cells.iter().map(|c| c.area().abs()).sum();
+    assert!((area - W * H).abs() < 0.01 * W * H, "{area:.0} mm²");
+}
+
+#[test]
+fn given_points_outside_the_region_are_left_out() {
+    // A circle of radius 30 about (64, 95), less a hole in its middle.
+    let region = "[layers.voronoi.region]\ncircle = { centre = [64, 95], radius = 30 }\n\
+                  holes = [{ circle = { centre = [64, 95], radius = 5 } }]\n";
+    let points = [
+        (64.0, 70.0),
+        (64.0, 95.0), // in the hole
+        (64.0, 120.0),
+        (10.0, 10.0), // outside the circle
+        (40.0, 95.0),
+        (93.9, 95.0), // just inside the outline
+        (94.1, 95.0), // just outside
+    ];
+    let s = scene(&given(
+        &points,
+        &format!("draw = [\"sites\", \"cells\"]\n{region}"),
+    ));
+    let kept: Vec<Point> = [(64.0, 70.0), (64.0, 120.0), (40.0, 95.0), (93.9, 95.0)]
+        .map(Point::from)
+        .to_vec();
+    let sites = dots(&s);
+    assert_eq!(sites.len(), kept.len(), "{sites:?}");
+    assert!(
+        sites.iter().zip(&kept).all(|(a, b)| a.distance(*b) < 1e-9),
+        "{sites:?}"
+    );
+    // None inside at all: refused, naming the points.
+    let e = error(&given(&[(64.0, 95.0), (0.0, 0.0)], region));
+    assert!(
+        e.contains(
+            "layers[0].voronoi[0].sites.points: none of the 2 points lies inside the region"
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn relaxation_moves_given_points() {
+    // Nine sites bunched in a corner: Lloyd steps spread them over the
+    // page, one cell each all the way.
+    let points: Vec<(f64, f64)> = (0..9)
+        .map(|i| (5.0 + 3.0 * (i % 3) as f64, 5.0 + 3.0 * (i / 3) as f64))
+        .collect();
+    let table = |relax: u32| {
+        given(
+            &points,
+            &format!("draw = [\"sites\", \"inset\"]\ninset = 0.01\nrelax = {relax}\n"),
+        )
+    };
+    let still = dots(&scene(&table(0)));
+    let moved = scene(&table(20));
+    let sites = dots(&moved);
+    assert_eq!(sites.len(), 9);
+    assert_eq!(paths_of(&moved, "inset").len(), 9);
+    let far = |ps: &[Point]| ps.iter().map(|p| p.x + p.y).sum::<f64>() / ps.len() as f64;
+    assert!(far(&still) < 20.0 && far(&sites) > 120.0, "{sites:?}");
+    // Weighted by a density, they settle where it is dense.
+    let dense = given(&points, "draw = [\"sites\"]\nrelax = 30\n") + "density = \"u^4\"\n";
+    let dense = scene(&dense);
+    let mean_x = dots(&dense).iter().map(|p| p.x).sum::<f64>() / 9.0;
+    assert!(mean_x > 0.6 * W, "mean x {mean_x:.1}");
+}
+
+#[test]
+fn given_points_refuse_the_keys_that_spread_sites() {
+    let points = "points = [[10, 10], [50, 50]]";
+    let cases = [
+        (
+            format!("sites = {{ {points}, distribution = \"poisson\" }}\n"),
+            "layers[0].voronoi[0].sites.distribution: does not apply to given points",
+        ),
+        (
+            format!("sites = {{ {points}, count = 5 }}\n"),
+            "layers[0].voronoi[0].sites.count: does not apply to given points",
+        ),
+        (
+            format!("sites = {{ {points}, jitter = 0.2 }}\n"),
+            "layers[0].voronoi[0].sites.jitter: does not apply to given points",
+        ),
+        (
+            format!("sites = {{ {points}, spacing = 4 }}\n"),
+            "layers[0].voronoi[0].sites.spacing: does nothing to given points without relax steps",
+        ),
+        (
+            format!("relax = 3\nsites = {{ {points}, spacing = 4 }}\n"),
+            "layers[0].voronoi[0].sites.spacing: does not apply to given points relaxed by \
+             unweighted lloyd steps",
+        ),
+        (
+            format!("sites = {{ {points}, density = \"u\" }}\n"),
+            "layers[0].voronoi[0].sites.density: does nothing to given points without relax",
+        ),
+        (
+            "sites = { points = [] }\n".to_string(),
+            "layers[0].voronoi[0].sites.points: needs at least one point [x, y]",
+        ),
+        (
+            "sites = { points = [[10, 10], [20, nan]] }\n".to_string(),
+            "layers[0].voronoi[0].sites.points[1]: y must be a finite number",
+        ),
+        (
+            "sites = { points = [[1e9, 10]] }\n".to_string(),
+            "layers[0].voronoi[0].sites.points[0]: x must be a finite number within",
+        ),
+    ];
+    for (table, expected) in cases {
+        let e = error(&table);
+        assert!(e.contains(expected), "{table}\n→ {e}\nwanted {expected}");
+    }
+    // With relaxation that reads it, the spacing is taken; the ranges of
+    // the fields checked are recorded, none for the points.
+    let table = format!("relax = 3\nrelaxation = \"lbg\"\nsites = {{ {points}, spacing = 4 }}\n");
+    let spec = SceneSpec::parse(&text(&table), Format::Toml).unwrap();
+    let ranges = spec.ranges();
+    assert!(ranges
+        .iter()
+        .any(|r| r.field == "layers[0].voronoi[0].sites.spacing"));
+    assert!(!ranges.iter().any(|r| r.field.contains("points")));
+    for table in [
+        format!("relax = 3\nsites = {{ {points}, spacing = 4, density = \"u\" }}\n"),
+        format!("relax = 3\nsites = {{ {points}, density = \"u\" }}\n"),
+    ] {
+        scene(&table);
+    }
+}
+
+/// The SVG without the description it embeds.
+fn drawing(svg: &str) -> String {
+    let (head, rest) = svg
+        .split_once("<metadata>")
+        .expect("an embedded description");
+    let (_, tail) = rest.split_once("</metadata>").expect("its end");
+    format!("{head}{tail}")
+}
+
+/// Renders `text` and again with the sites of each voronoi table pinned
+/// (given as the points they were spread as), written to TOML and read
+/// back: the same SVG, byte for byte, but for the embedded description.
+fn pinning_draws_the_same(text: &str) {
+    use crate::motif::Library;
+    use crate::project::{render_with_progress, voronoi_sites};
+    let spec = SceneSpec::parse(text, Format::Toml).unwrap();
+    let library = Library::new();
+    let mut pinned = spec.clone();
+    for (l, layer) in spec.layers.iter().enumerate() {
+        for t in 0..layer.voronoi.len() {
+            let sites = voronoi_sites(&spec, &library, l, t).unwrap();
+            assert!(sites.len() > 3, "{} sites", sites.len());
+            pinned = pinned
+                .edit(|s| s.layers[l].voronoi[t] = s.layers[l].voronoi[t].pinned(sites))
+                .unwrap();
+            assert!(pinned.layers[l].voronoi[t].sites.points.is_some());
+        }
+    }
+    let pinned = SceneSpec::parse(&pinned.to_toml(), Format::Toml).unwrap();
+    let render =
+        |s: &crate::spec::ValidSpec| render_with_progress(s, &library, &mut |_| {}).unwrap();
+    let (before, after) = (render(&spec), render(&pinned));
+    assert_ne!(before.svg, after.svg, "the descriptions differ");
+    assert!(
+        drawing(&before.svg) == drawing(&after.svg),
+        "pinned sites draw otherwise:\n{text}\n{}",
+        pinned.to_toml()
+    );
+    assert_eq!(before.notes, after.notes);
+}
+
+#[test]
+fn pinned_sites_draw_the_same_svg() {
+    let every = "draw = [\"cells\", \"delaunay\", \"inset\", \"sites\", \"tour\"]\n";
+    for table in [
+        format!("{every}sites = {{ spacing = 9 }}\n"),
+        format!("{every}relax = 3\nsites = {{ distribution = \"grid\", spacing = 11, jitter = 1 }}\n"),
+        format!("{every}relax = 2\nsites = {{ distribution = \"uniform\", count = 90 }}\n"),
+        // Weighted: the spacing relaxation reads (the default, 10) is
+        // written out; uniform sites' even spacing comes from their number.
+        format!("{every}relax = 4\nsites = {{ density = \"u\" }}\n"),
+        format!("{every}relax = 4\nsites = {{ distribution = \"uniform\", count = 80, density = \"v\" }}\n"),
+        // No steps: the density placed the sites and is dropped.
+        format!("{every}sites = {{ spacing = 6, density = \"1 - u\" }}\n"),
+        // LBG splits and removes sites at the spacing it aims at.
+        format!("{every}relaxation = \"lbg\"\nrelax = 15\nsites = {{ distribution = \"uniform\", count = 30, spacing = 12, density = \"u\" }}\n"),
+        format!("{every}relaxation = \"lbg\"\nrelax = 15\nconverge = 0.1\nsites = {{ density = \"v\" }}\n"),
+        // A region with a hole.
+        format!(
+            "{every}relax = 1\nsites = {{ spacing = 7 }}\n[layers.voronoi.region]\n\
+             circle = {{ centre = [64, 95], radius = 50 }}\n\
+             holes = [{{ polygon = [[50, 80], [80, 80], [80, 110], [50, 110]] }}]\n"
+        ),
+    ] {
+        pinning_draws_the_same(&text(&table));
+    }
+}
+
+#[test]
+fn pinned_sites_draw_the_same_across_layers() {
+    // Two tables with one id share their sites; a third fills the cells of
+    // the first layer, so finding its sites builds that layer first.
+    pinning_draws_the_same(
+        "version = 1\nseed = 11\npage = { size = \"A5\", margin = 10 }\n\
+         [[layers]]\nname = \"a\"\n[[layers.voronoi]]\nid = \"w\"\nrelax = 2\n\
+         sites = { distribution = \"uniform\", count = 6 }\n\
+         [[layers]]\nname = \"b\"\n[[layers.voronoi]]\nid = \"w\"\nrelax = 2\ndraw = [\"inset\"]\n\
+         sites = { distribution = \"uniform\", count = 6 }\n\
+         [[layers]]\nname = \"c\"\n[[layers.voronoi]]\nid = \"x\"\ndraw = [\"sites\", \"cells\"]\n\
+         sites = { spacing = 5 }\nregion = { layer = \"a\" }\n",
+    );
+}
+
+#[test]
+fn sites_of_a_missing_table_are_refused_with_its_place() {
+    use crate::motif::Library;
+    use crate::project::voronoi_sites;
+    let spec = SceneSpec::parse(&text("draw = [\"cells\"]\n"), Format::Toml).unwrap();
+    let library = Library::new();
+    assert!(voronoi_sites(&spec, &library, 0, 0).is_ok());
+    for (layer, table) in [(0, 1), (1, 0)] {
+        let e = voronoi_sites(&spec, &library, layer, table)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!(
+                "layers[{layer}].voronoi[{table}]: the description has no such voronoi table"
+            )),
+            "{e}"
+        );
+    }
+}
