@@ -498,3 +498,32 @@ fn a_click_in_a_zentangle_fills_the_region_under_it() {
     );
     studio.stop();
 }
+
+#[test]
+fn a_tree_dragged_in_the_arrange_tool_moves_and_is_written_as_its_adjustment() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let (studio, _dir) = studio(SCENE);
+    browser.open(&studio.url());
+    browser.wait_for("the first preview", PREVIEW);
+    browser.click("input[name=tool][value=arrange]");
+    let tree = "const t = document.getElementById('front.pine.tree-1'); return t && t.getBoundingClientRect().x;";
+    let before = browser.wait_for("the tree", tree).as_f64().unwrap();
+    browser.drag("g[id=\"front.pine.tree-1\"]", -90, 0);
+    let text = browser.wait_for(
+        "the adjustment",
+        "const t = document.getElementById('text').value; return t.includes('[[adjust]]') && t;",
+    );
+    let text = text.as_str().unwrap();
+    assert!(text.contains("id = \"front.pine.tree-1\""), "{text}");
+    let spec = moyo::ValidSpec::parse(text, moyo::Format::Toml).unwrap();
+    let [dx, dy] = spec.spec().adjust[0].offset.unwrap();
+    assert!(dx < -5.0 && dy.abs() < 1.0, "{dx}, {dy}");
+    // The rendered tree stands where it was dropped.
+    browser.wait_for(
+        "the tree to move",
+        &format!("const t = document.getElementById('front.pine.tree-1'); return t && !t.hasAttribute('transform') && t.getBoundingClientRect().x < {before} - 20;"),
+    );
+    studio.stop();
+}

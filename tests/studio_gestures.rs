@@ -291,3 +291,123 @@ fn a_click_on_a_filled_tile_touches_up_what_the_loop_left_white() {
     assert!(after.last().unwrap().ends_with("-p2"), "{after:?}");
     studio.stop();
 }
+
+/// An SVG without its embedded description (which names the change).
+fn drawing(svg: &str) -> String {
+    match (svg.find("<metadata"), svg.find("</metadata>")) {
+        (Some(a), Some(b)) => format!("{}{}", &svg[..a], &svg[b..]),
+        _ => svg.to_string(),
+    }
+}
+
+#[test]
+fn pinned_voronoi_sites_draw_the_same_and_then_drag_as_handles() {
+    let text = moyo::templates::get("voronoi-stained-glass").unwrap().text;
+    let (studio, _dir) = studio(text);
+    let addr = studio.addr();
+    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    assert_eq!(targets["voronoi"][0]["field"], "layers[0].voronoi[0]");
+    assert_eq!(targets["voronoi"][0]["pinned"], false);
+    let before = call(addr, "GET", "/api/svg", &[], b"").text();
+    let pinned = post(addr, "/api/pin", &json!({"target": "layers[0].voronoi[0]"}));
+    assert_eq!(pinned.status, 200, "{}", pinned.text());
+    let written = scene(addr);
+    // The sites are written out; what spread them is gone from that
+    // table; the comments stay.
+    let spec = moyo::ValidSpec::parse(&written, moyo::Format::Toml).unwrap();
+    let sites = &spec.spec().layers[0].voronoi[0].sites;
+    let points = sites.points.clone().unwrap();
+    assert!(points.len() > 100, "{}", points.len());
+    assert_eq!(sites.distribution, None);
+    assert!(written.contains("# The lead: every edge between two panes once"));
+    // And the design is as it was.
+    let after = call(addr, "GET", "/api/svg", &[], b"").text();
+    assert_eq!(drawing(&after), drawing(&before));
+    assert_eq!(
+        call(addr, "GET", "/api/targets", &[], b"").json()["voronoi"][0]["pinned"],
+        true
+    );
+    // Every site is now a handle; moving one moves its cell.
+    let handles = call(addr, "GET", "/api/handles", &[], b"").json();
+    let line = handles["lines"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|l| l["field"] == "layers[0].voronoi[0].sites.points")
+        .expect("the sites are handles")
+        .clone();
+    assert_eq!(line["points"].as_array().unwrap().len(), points.len());
+    let [x, y] = points[0];
+    let moved = call(
+        addr,
+        "PATCH",
+        "/api/fields",
+        &["Content-Type: application/json"],
+        json!({"changes": [
+            {"field": "layers[0].voronoi[0].sites.points[0][0]", "value": x + 3.0},
+            {"field": "layers[0].voronoi[0].sites.points[0][1]", "value": y + 2.0},
+        ]})
+        .to_string()
+        .as_bytes(),
+    );
+    assert_eq!(moved.status, 200, "{}", moved.text());
+    let dragged = call(addr, "GET", "/api/svg", &[], b"").text();
+    assert_ne!(drawing(&dragged), drawing(&after));
+    // Not a Voronoi table.
+    let refused = post(addr, "/api/pin", &json!({"target": "layers[0].trees[0]"}));
+    assert_eq!(refused.status, 422);
+    studio.stop();
+}
+
+#[test]
+fn arranging_a_tree_is_written_as_its_adjustment() {
+    let (studio, _dir) = studio(SCENE);
+    let addr = studio.addr();
+    let adjust = |change: Value| {
+        let answer = post(addr, "/api/adjust", &change);
+        assert_eq!(answer.status, 200, "{change}: {}", answer.text());
+        let spec = moyo::ValidSpec::parse(&scene(addr), moyo::Format::Toml).unwrap();
+        spec.spec().adjust[0].clone()
+    };
+    let tree = "front.pine.tree-0";
+    let first = call(addr, "GET", "/api/svg", &[], b"").text();
+    // A drag, then another: the moves add up, to a tenth of a millimetre.
+    let a = adjust(json!({"id": tree, "move": [10.04, -2.0]}));
+    assert_eq!((a.id.as_str(), a.offset), (tree, Some([10.0, -2.0])));
+    let a = adjust(json!({"id": tree, "move": [5.0, 2.0]}));
+    assert_eq!(a.offset, Some([15.0, 0.0]));
+    assert_ne!(call(addr, "GET", "/api/svg", &[], b"").text(), first);
+    // Turns stay within a half turn either way; scales multiply.
+    let a = adjust(json!({"id": tree, "rotate": 150}));
+    assert_eq!(a.rotate, Some(150.0));
+    let a = adjust(json!({"id": tree, "rotate": 50}));
+    assert_eq!(a.rotate, Some(-160.0));
+    adjust(json!({"id": tree, "scale": 1.5}));
+    let a = adjust(json!({"id": tree, "scale": 1.5}));
+    assert_eq!(a.scale, Some(2.25));
+    // One entry for the tree, written where [[adjust]] tables go.
+    let written = scene(addr);
+    assert!(written.starts_with(SCENE), "{written}");
+    assert_eq!(written.matches("[[adjust]]").count(), 1, "{written}");
+    // Hidden: gone from the drawing.
+    adjust(json!({"id": tree, "hide": true}));
+    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    assert!(!svg.contains(&format!("id=\"{tree}\"")));
+    assert!(svg.contains("id=\"front.pine.tree-1\""));
+    // Something that is not drawn cannot be arranged, and nothing changes.
+    let before = scene(addr);
+    let refused = post(
+        addr,
+        "/api/adjust",
+        &json!({"id": "front.pine.tree-9", "move": [1, 1]}),
+    );
+    assert_eq!(refused.status, 422);
+    assert!(refused.json()["error"]
+        .as_str()
+        .unwrap()
+        .contains("matches nothing drawn"));
+    assert_eq!(scene(addr), before);
+    // Each gesture was one step of the history.
+    assert_eq!(call(addr, "GET", "/api/state", &[], b"").json()["undo"], 7);
+    studio.stop();
+}

@@ -1,7 +1,10 @@
 //! The page's gestures, each a plain change of the description: a stroke
 //! drawn with the pen grows a sketch (live, then written as its points),
-//! a click gives a zentangle region its procedure (a manual step). What
-//! each family offers to a gesture is listed by `GET /api/targets`.
+//! a click gives a zentangle region its procedure (a manual step), a
+//! Voronoi table's sites are pinned (written as its `points`, which the
+//! page then drags as handles), a tree, flower, leaf or plant dragged,
+//! turned, scaled or hidden becomes its `[[adjust]]`. What each family
+//! offers to a gesture is listed by `GET /api/targets`.
 
 use axum::extract::State;
 use axum::http::StatusCode;
@@ -12,7 +15,7 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 
 use super::api::{apply, changed, failure, nothing_rendered, App};
-use super::edit::Edit;
+use super::edit::{point_list, Edit};
 use super::pen::{Stroke, Target};
 use super::session::Move;
 use crate::error::Error;
@@ -26,6 +29,8 @@ pub(super) fn routes() -> Router<App> {
         .route("/api/stroke/extend", post(stroke_extend))
         .route("/api/stroke/end", post(stroke_end))
         .route("/api/fill", post(fill))
+        .route("/api/pin", post(pin))
+        .route("/api/adjust", post(adjust))
 }
 
 /// What the gestures can work on in the last good design: the layers
@@ -38,6 +43,7 @@ async fn targets(State(app): State<App>) -> Response {
     let scene = &good.rendered.scene;
     let mut sketch = Vec::new();
     let mut zentangle = Vec::new();
+    let mut voronoi = Vec::new();
     let layers: Vec<Value> = spec
         .layers
         .iter()
@@ -54,13 +60,24 @@ async fn targets(State(app): State<App>) -> Response {
                 match item.table {
                     Table::LSystem(t) if t.sketch.is_some() => sketch.push(target),
                     Table::Zentangle(_) => zentangle.push(target),
+                    Table::Voronoi(v) => {
+                        let mut target = target;
+                        target["pinned"] = v.sites.points.is_some().into();
+                        voronoi.push(target);
+                    }
                     _ => {}
                 }
             }
             json!({"index": l, "name": layer.name})
         })
         .collect();
-    Json(json!({"layers": layers, "sketch": sketch, "zentangle": zentangle})).into_response()
+    Json(json!({
+        "layers": layers,
+        "sketch": sketch,
+        "zentangle": zentangle,
+        "voronoi": voronoi,
+    }))
+    .into_response()
 }
 
 #[derive(Deserialize)]
@@ -209,6 +226,169 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
     }
     let text = Edit::parse(&good.text).and_then(|mut edit| {
         edit.push_table(&format!("{}.manual", click.target), step, true)?;
+        Ok(edit.text())
+    });
+    match text {
+        Ok(text) => match apply(&app, text, Move::Gesture).await {
+            Ok(good) => changed(&app, &good),
+            Err(response) => response,
+        },
+        Err(e) => failure(&e),
+    }
+}
+
+#[derive(Deserialize)]
+struct Pin {
+    /// The Voronoi table's field path.
+    target: String,
+}
+
+/// Writes the sites a Voronoi table spreads as its `points`, exactly, so
+/// that the design does not change and every site becomes a handle to
+/// drag; the keys that spread them go.
+async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let place = pin
+        .target
+        .strip_prefix("layers[")
+        .and_then(|rest| rest.split_once("].voronoi["))
+        .and_then(|(l, t)| Some((l.parse().ok()?, t.strip_suffix(']')?.parse().ok()?)));
+    let found = place.and_then(|(l, t): (usize, usize)| {
+        Some((l, t, good.spec.spec().layers.get(l)?.voronoi.get(t)?))
+    });
+    let Some((l, t, table)) = found else {
+        return failure(&Error::invalid(
+            &pin.target,
+            "is not a Voronoi table of the design",
+        ));
+    };
+    let work = {
+        let good = std::sync::Arc::clone(&good);
+        tokio::task::spawn_blocking(move || {
+            crate::project::voronoi_sites(&good.spec, &good.library, l, t)
+        })
+    };
+    let points = match work.await {
+        Ok(Ok(points)) => points,
+        Ok(Err(e)) => return failure(&e),
+        Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+    };
+    let sites = format!("{}.sites", pin.target);
+    let pinned = table.pinned(points.clone()).sites;
+    let text = Edit::parse(&good.text).and_then(|mut edit| {
+        // The sites' keys as they will be: each kept, set or removed.
+        let now =
+            toml::Value::try_from(&pinned).map_err(|e| Error::invalid(&sites, e.to_string()))?;
+        for key in [
+            "distribution",
+            "count",
+            "spacing",
+            "jitter",
+            "image",
+            "density",
+        ] {
+            match now.get(key) {
+                Some(v) => edit.set(&format!("{sites}.{key}"), toml_value(v)?)?,
+                None => edit.remove(&format!("{sites}.{key}"))?,
+            }
+        }
+        edit.set(&format!("{sites}.points"), point_list(&points))?;
+        Ok(edit.text())
+    });
+    match text {
+        Ok(text) => match apply(&app, text, Move::Gesture).await {
+            Ok(good) => changed(&app, &good),
+            Err(response) => response,
+        },
+        Err(e) => failure(&e),
+    }
+}
+
+/// A plain TOML value (a number, a string) as an editable one.
+fn toml_value(v: &toml::Value) -> Result<toml_edit::Value, Error> {
+    v.to_string()
+        .parse()
+        .map_err(|e: toml_edit::TomlError| Error::invalid("studio", e.to_string()))
+}
+
+#[derive(Deserialize)]
+struct Adjust {
+    /// The id as in the SVG (`front.pine.tree-0.flower-3`).
+    id: String,
+    /// Moved by `[dx, dy]` mm more.
+    #[serde(rename = "move")]
+    offset: Option<[f64; 2]>,
+    /// Turned by this many degrees more, clockwise.
+    rotate: Option<f64>,
+    /// Scaled by this factor more.
+    scale: Option<f64>,
+    /// Hidden (or shown again).
+    hide: Option<bool>,
+}
+
+/// A drag, turn, scale or hide of one thing drawn: its `[[adjust]]`
+/// entry changed by as much (made when it has none), as one edit.
+async fn adjust(State(app): State<App>, Json(change): Json<Adjust>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    let finite = change
+        .offset
+        .iter()
+        .flatten()
+        .chain(&change.rotate)
+        .chain(&change.scale);
+    if finite.clone().any(|v| !v.is_finite()) {
+        return failure(&Error::invalid(
+            "adjust",
+            "the change is not a finite number",
+        ));
+    }
+    let list = &good.spec.spec().adjust;
+    let old = list.iter().position(|a| a.id == change.id);
+    let was = old.map(|i| &list[i]);
+    let tenth = |v: f64| (v * 10.0).round() / 10.0;
+    let offset = change.offset.map(|[dx, dy]| {
+        let [x, y] = was.and_then(|a| a.offset).unwrap_or([0.0, 0.0]);
+        [tenth(x + dx), tenth(y + dy)]
+    });
+    // Turns kept in −180–180, scales in what the description allows.
+    let rotate = change.rotate.map(|d| {
+        let r = was.and_then(|a| a.rotate).unwrap_or(0.0) + d;
+        tenth(180.0 - (180.0 - r).rem_euclid(360.0))
+    });
+    let scale = change.scale.map(|f| {
+        let s = was.and_then(|a| a.scale).unwrap_or(1.0) * f;
+        ((s * 1000.0).round() / 1000.0).clamp(0.01, 100.0)
+    });
+    let text = Edit::parse(&good.text).and_then(|mut edit| {
+        let mut values: Vec<(&str, toml_edit::Value)> = Vec::new();
+        if let Some([x, y]) = offset {
+            values.push(("move", toml_edit::Array::from_iter([x, y]).into()));
+        }
+        if let Some(r) = rotate {
+            values.push(("rotate", r.into()));
+        }
+        if let Some(s) = scale {
+            values.push(("scale", s.into()));
+        }
+        if let Some(h) = change.hide {
+            values.push(("hide", h.into()));
+        }
+        if let Some(i) = old {
+            for (key, value) in values {
+                edit.set(&format!("adjust[{i}].{key}"), value)?;
+            }
+        } else {
+            let mut table = toml_edit::Table::new();
+            table.insert("id", toml_edit::value(change.id.as_str()));
+            for (key, value) in values {
+                table.insert(key, toml_edit::Item::Value(value));
+            }
+            edit.push_table("adjust", table, false)?;
+        }
         Ok(edit.text())
     });
     match text {

@@ -13,7 +13,7 @@ use glam::DVec2;
 use kurbo::BezPath;
 use toml_edit::{Array, Table};
 
-use super::edit::Edit;
+use super::edit::{point_list, Edit};
 use super::session::Good;
 use crate::error::{Error, Result};
 use crate::motif::GrowingSketch;
@@ -183,13 +183,7 @@ impl Stroke {
                 format!("the stroke has no length: draw further than {MIN_GAP} mm"),
             ));
         }
-        let mut points = Array::new();
-        for &[x, y] in &self.points {
-            let mut pair = Array::new();
-            pair.push(x);
-            pair.push(y);
-            points.push(pair);
-        }
+        let points = point_list(&self.points);
         let mut edit = Edit::parse(text)?;
         match &self.target {
             Target::Table(field) => {

@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 
 use super::folder::Folder;
 use crate::error::{Error, Result};
+use crate::motif::Library;
 use crate::project::{load_motifs_with, render_cancellable, Cancel, Rendered};
 use crate::spec::{Format, ValidSpec};
 
@@ -24,6 +25,8 @@ pub(crate) struct Good {
     pub rendered: Rendered,
     /// The colour preview SVG.
     pub preview: String,
+    /// The files it read (images, SVG paths, meshes).
+    pub library: Library,
     /// The description as a TOML value, every default written out: what
     /// the form and the handles read their numbers from.
     pub value: toml::Value,
@@ -203,6 +206,7 @@ impl Session {
             spec,
             rendered,
             preview,
+            library,
             value,
         })
     }
