@@ -545,3 +545,50 @@ fn a_newer_edit_calls_off_the_render_before_it() {
     assert_eq!(get(addr, "/api/scene").text(), light);
     studio.stop();
 }
+
+#[test]
+fn the_command_starts_on_a_json_description_as_toml_and_names_a_broken_one() {
+    use std::io::BufRead;
+    let dir = tempdir();
+    let spec = moyo::ValidSpec::parse(SCENE, moyo::Format::Toml).unwrap();
+    let json = serde_json::to_string_pretty(spec.spec()).unwrap();
+    std::fs::write(dir.path().join("scene.json"), &json).unwrap();
+    let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("moyo"))
+        .current_dir(dir.path())
+        .args(["studio", "scene.json", "--port", "0"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    std::io::BufReader::new(child.stderr.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let url = line
+        .split_whitespace()
+        .find(|w| w.starts_with("http://"))
+        .unwrap_or_else(|| panic!("{line}"));
+    let addr: SocketAddr = url
+        .trim_start_matches("http://")
+        .trim_end_matches('/')
+        .parse()
+        .unwrap();
+    let text = get(addr, "/api/scene").text();
+    let _ = child.kill();
+    let _ = child.wait();
+    // TOML now, the same description.
+    let back = moyo::ValidSpec::parse(&text, moyo::Format::Toml).unwrap();
+    assert_eq!(back.spec(), spec.spec());
+    // A broken one: its file, line and column, and no server.
+    std::fs::write(
+        dir.path().join("bad.json"),
+        "{\n  \"version\": 1,\n  \"seed\": \"x\"\n}",
+    )
+    .unwrap();
+    let out = crate::cli::moyo(&dir)
+        .args(["studio", "bad.json", "--port", "0"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert!(e.contains("bad.json:3:"), "{e}");
+}

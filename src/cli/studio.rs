@@ -7,12 +7,14 @@ use std::path::PathBuf;
 
 use moyo::studio::{Studio, StudioOptions};
 use moyo::templates;
+use moyo::{Format, ValidSpec};
 
 use super::CliError;
 
 #[derive(clap::Args)]
 pub(crate) struct StudioArgs {
-    /// Scene description file (TOML) to start from.
+    /// Scene description file to start from (TOML, or JSON, which the
+    /// studio turns into TOML).
     scene: Option<PathBuf>,
     /// Start from a built-in template instead.
     #[arg(short, long, conflicts_with = "scene")]
@@ -29,8 +31,18 @@ pub(crate) struct StudioArgs {
 /// `moyo studio`.
 pub(crate) fn studio(args: &StudioArgs) -> Result<(), CliError> {
     let text = match (&args.scene, &args.template) {
-        (Some(path), _) => moyo::input::read_text(path)
-            .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?,
+        (Some(path), _) => {
+            let text = moyo::input::read_text(path)
+                .map_err(|e| CliError::Message(format!("{}: {e}", path.display())))?;
+            match Format::from_path(path) {
+                Format::Toml => text,
+                // The studio edits TOML: a JSON description is written as
+                // TOML once, here (it has no comments to lose).
+                Format::Json => ValidSpec::parse(&text, Format::Json)
+                    .map_err(|e| CliError::Message(format!("{}:{e}", path.display())))?
+                    .to_toml(),
+            }
+        }
         (None, Some(name)) => templates::get(name)?.text.to_string(),
         (None, None) => templates::get(templates::STUDIO)?.text.to_string(),
     };

@@ -79,10 +79,11 @@ pub fn number(value: &toml::Value) -> Option<f64> {
         .or_else(|| value.as_integer().map(|i| i as f64))
 }
 
-/// The paths of every list of two or more `[x, y]` points in `value`,
-/// tables' keys in alphabetical order.
-pub fn point_lists(value: &toml::Value) -> Vec<String> {
-    fn walk(v: &toml::Value, path: String, out: &mut Vec<String>) {
+/// Calls `visit` with the path and value of every table entry and list
+/// item below `value`, parents first, tables' keys in alphabetical order;
+/// `visit` returns whether to go into what it was given.
+fn walk(value: &toml::Value, visit: &mut dyn FnMut(&str, &toml::Value) -> bool) {
+    fn go(v: &toml::Value, path: &str, visit: &mut dyn FnMut(&str, &toml::Value) -> bool) {
         match v {
             toml::Value::Table(t) => {
                 for (k, v) in t {
@@ -91,23 +92,108 @@ pub fn point_lists(value: &toml::Value) -> Vec<String> {
                     } else {
                         format!("{path}.{k}")
                     };
-                    walk(v, next, out);
+                    if visit(&next, v) {
+                        go(v, &next, visit);
+                    }
                 }
             }
             toml::Value::Array(a) => {
-                if a.len() >= 2 && a.iter().all(|p| xy(p).is_some()) {
-                    out.push(path);
-                } else {
-                    for (i, v) in a.iter().enumerate() {
-                        walk(v, format!("{path}[{i}]"), out);
+                for (i, v) in a.iter().enumerate() {
+                    let next = format!("{path}[{i}]");
+                    if visit(&next, v) {
+                        go(v, &next, visit);
                     }
                 }
             }
             _ => {}
         }
     }
+    go(value, "", visit);
+}
+
+/// The paths of every list of two or more `[x, y]` points in `value`,
+/// tables' keys in alphabetical order.
+pub fn point_lists(value: &toml::Value) -> Vec<String> {
     let mut out = Vec::new();
-    walk(value, String::new(), &mut out);
+    walk(value, &mut |path, v| match v.as_array() {
+        Some(a) if a.len() >= 2 && a.iter().all(|p| xy(p).is_some()) => {
+            out.push(path.to_string());
+            false
+        }
+        _ => true,
+    });
+    out
+}
+
+/// The paths and values of every `true`/`false` in `value`.
+pub fn booleans(value: &toml::Value) -> Vec<(String, bool)> {
+    let mut out = Vec::new();
+    walk(value, &mut |path, v| {
+        if let Some(b) = v.as_bool() {
+            out.push((path.to_string(), b));
+        }
+        true
+    });
+    out
+}
+
+/// A text field of a description that takes one of a few words.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Choice {
+    /// Its path.
+    pub field: String,
+    /// The word it has.
+    pub value: String,
+    /// The words it may take.
+    pub options: Vec<String>,
+}
+
+/// Every text field of the description `value` that takes one of a few
+/// words (`style`, `distribution`, `black` …), with them. The words are
+/// the ones the description's own reader names when given another (each
+/// text is tried with a word no field takes), so the list cannot drift
+/// from what is accepted.
+pub fn choices(value: &toml::Value) -> Vec<Choice> {
+    const PROBE: &str = "\u{1}";
+    let mut texts = Vec::new();
+    walk(value, &mut |path, v| {
+        if let Some(s) = v.as_str() {
+            texts.push((path.to_string(), s.to_string()));
+        }
+        true
+    });
+    let mut probe = value.clone();
+    let mut out = Vec::new();
+    for (field, now) in texts {
+        let Some(slot) = value_at_mut(&mut probe, &field) else {
+            continue;
+        };
+        *slot = toml::Value::String(PROBE.into());
+        let refused = probe.clone().try_into::<super::SceneSpec>().err();
+        if let Some(slot) = value_at_mut(&mut probe, &field) {
+            *slot = toml::Value::String(now.clone());
+        }
+        let message = refused.map(|e| e.message().to_string()).unwrap_or_default();
+        let Some((_, named)) = message
+            .strip_prefix("unknown variant")
+            .and_then(|m| m.split_once("expected "))
+        else {
+            continue;
+        };
+        let options: Vec<String> = named
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect();
+        if !options.is_empty() {
+            out.push(Choice {
+                field,
+                value: now,
+                options,
+            });
+        }
+    }
     out
 }
 
