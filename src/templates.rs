@@ -88,6 +88,7 @@ pub const ALL: &[Template] = templates![
     "vine-leaves",
     "vine-cross",
     "vine-fence",
+    "vine-orbit",
     "vine-border",
     "kimono-vine",
     "kimono-egasumi",

@@ -9,6 +9,7 @@
 //! Errors name the field path (`layers[0].trees[1].params.ratio1`), the
 //! allowed range, and — for TOML — the line and column of the value.
 
+mod camera;
 pub mod field;
 mod flora;
 mod layer;
@@ -24,6 +25,7 @@ mod vine;
 mod voronoi;
 mod zentangle;
 
+pub use camera::{CameraPreset, CameraSpec, Orbit};
 pub use flora::{
     AdjustSpec, Assign, BackgroundSpec, BokashiSpec, BuiltMotif, FileMotif, FlowerSites,
     FlowerSpec, JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MistSpec, MotifKind,
@@ -40,7 +42,7 @@ pub use region::{CircleSpec, HoleSpec, RegionSpec};
 pub use trees::{Growth, LimbSpec, LimbStyle, Rhythm, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
 pub use validate::FieldRange;
-pub use vine::{CameraPreset, CameraSpec, GuideSpec, Part, SupportSpec, VineSpec};
+pub use vine::{GuideSpec, Part, SupportSpec, VineSpec};
 pub use voronoi::{
     Distribution, Draw, RelaxationMethod, SitesSpec, VoronoiSpec, DEFAULT_SPACING, MAX_RELAX,
     MAX_SITES,

@@ -214,3 +214,122 @@ fn voronoi_sites_read_and_write_back_with_or_without_points() {
         "{msg}"
     );
 }
+
+/// A description with one vine whose table ends with `camera`.
+fn vine(camera: &str) -> String {
+    format!("version = 1\n\n[[layers]]\nname = \"v\"\n\n[[layers.vine]]\n{camera}\n")
+}
+
+#[test]
+fn every_kind_of_vine_camera_reads_back_from_toml_and_json() {
+    for camera in [
+        "camera = \"three-quarter\"",
+        "camera = { turn = -120.5, tilt = 30 }",
+        "camera = { turn = 40 }",
+        "camera = { tilt = -10, perspective = 50 }",
+        "camera = { eye = [1, 2, 3], target = [0, 50, 0], perspective = 40 }",
+    ] {
+        let s = parse(&vine(camera)).unwrap();
+        let toml = s.to_toml();
+        assert_eq!(parse(&toml).unwrap(), s, "{camera}:\n{toml}");
+        let json = serde_json::to_string(s.spec()).unwrap();
+        assert_eq!(SceneSpec::parse(&json, Format::Json).unwrap(), s, "{json}");
+    }
+    let s = parse(&vine("camera = { turn = 40 }")).unwrap();
+    assert_eq!(
+        s.layers[0].vine[0].camera,
+        CameraSpec::Orbit(Orbit {
+            turn: 40.0,
+            ..Orbit::FRONT
+        })
+    );
+    assert!(s
+        .to_toml()
+        .contains("[layers.vine.camera]\nturn = 40.0\ntilt = 0.0\n"));
+}
+
+#[test]
+fn an_orbit_lists_its_ranges_for_the_form() {
+    let s = parse(&vine("camera = { turn = 30, tilt = 15, perspective = 40 }")).unwrap();
+    let ranges = s.ranges();
+    for (field, lo, hi) in [
+        ("turn", -360.0, 360.0),
+        ("tilt", -89.0, 89.0),
+        ("perspective", 1.0, 170.0),
+    ] {
+        let field = format!("layers[0].vine[0].camera.{field}");
+        let range = ranges.iter().find(|r| r.field == field);
+        assert_eq!(
+            range.map(|r| (r.lo, r.hi, r.integer)),
+            Some((lo, hi, false)),
+            "{field}"
+        );
+    }
+}
+
+#[test]
+fn a_wrong_vine_camera_is_named_at_its_key() {
+    for (camera, message) in [
+        (
+            "camera = { turn = 30, tilt = 95 }",
+            "7:30: layers[0].vine[0].camera.tilt: must be between -89 and 89, got 95",
+        ),
+        (
+            "camera = { turn = -400 }",
+            "7:19: layers[0].vine[0].camera.turn: must be between -360 and 360, got -400",
+        ),
+        (
+            "camera = { tilt = 10, perspective = 171 }",
+            "7:37: layers[0].vine[0].camera.perspective: must be between 1 and 170, got 171",
+        ),
+        (
+            "camera = { eye = [1, 2] }",
+            "7:18: layers[0].vine[0].camera.eye: invalid length 2, expected an array of length 3",
+        ),
+        (
+            "camera = { eye = [1, 2, 3] }",
+            "7:10: layers[0].vine[0].camera: missing field `target`",
+        ),
+        (
+            "camera = { turn = \"left\" }",
+            "7:19: layers[0].vine[0].camera.turn: invalid type: string \"left\", expected f64",
+        ),
+        (
+            "camera = { turn = 30, roll = 5 }",
+            "7:23: layers[0].vine[0].camera.roll: unknown field `roll`, expected one of \
+             `eye`, `target`, `up`, `perspective`, `turn`, `tilt`",
+        ),
+        (
+            "camera = { turn = 30, eye = [1, 2, 3] }",
+            "7:10: layers[0].vine[0].camera: mixes an orbit (`turn`, `tilt`) with a placed \
+             camera (`eye`, `target`, `up`): give one or the other",
+        ),
+        (
+            "camera = { perspective = 40 }",
+            "7:10: layers[0].vine[0].camera: needs `turn` and `tilt` (an orbit round the \
+             vine) or `eye` and `target` (a placed camera)",
+        ),
+        (
+            "camera = \"side\"",
+            "7:10: layers[0].vine[0].camera: unknown variant `side`, expected one of \
+             `front`, `three-quarter`, `below`",
+        ),
+        (
+            "camera = 5",
+            "7:10: layers[0].vine[0].camera: invalid type: integer `5`, expected a camera: \
+             \"front\", \"three-quarter\", \"below\", { turn = …, tilt = … } or \
+             { eye = [x, y, z], target = [x, y, z] }",
+        ),
+    ] {
+        assert_eq!(parse(&vine(camera)).unwrap_err().to_string(), message);
+    }
+    // JSON names the same keys.
+    let json = r#"{"version": 1, "layers": [{"name": "v", "vine": [{"camera": {"turn": 1, "tilt": "x"}}]}]}"#;
+    let msg = SceneSpec::parse(json, Format::Json)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("layers[0].vine[0].camera.tilt: invalid type"),
+        "{msg}"
+    );
+}

@@ -8,6 +8,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use super::camera::CameraSpec;
 use super::layer::Family;
 use super::lsystem::one_stroke;
 use super::validate::range;
@@ -82,7 +83,11 @@ pub struct VineSpec {
     /// to the right of the first root); `supports = []` for none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub supports: Option<Vec<SupportSpec>>,
-    /// Where the drawing is seen from (default `"front"`).
+    /// Where the drawing is seen from (default `"front"`): a preset
+    /// (`"front"`, `"three-quarter"`, `"below"`), an orbit round the middle
+    /// of the plant and its supports (`{ turn = 30, tilt = 15 }`, degrees),
+    /// or a camera placed by hand (`{ eye = [..], target = [..] }`); see
+    /// [`CameraSpec`].
     #[serde(default, skip_serializing_if = "CameraSpec::is_front")]
     pub camera: CameraSpec,
     /// The box `[x0, y0, x1, y1]` (mm) the drawing is fitted into, aspect
@@ -227,53 +232,6 @@ fn unit_scale() -> f64 {
     1.0
 }
 
-/// Where a vine is seen from: a preset aimed at the middle of the plant
-/// and its supports, or a camera of its own.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
-pub enum CameraSpec {
-    /// `"front"` (the default), `"three-quarter"` or `"below"`.
-    Preset(CameraPreset),
-    /// A camera placed by hand.
-    Placed {
-        /// Where the eye is, `[x, y, z]` mm.
-        eye: [f64; 3],
-        /// The point looked at.
-        target: [f64; 3],
-        /// Which way is up in the picture (default `[0, 1, 0]`).
-        #[serde(default = "y_up")]
-        up: [f64; 3],
-        /// Vertical field of view in degrees (1–170) for a perspective
-        /// camera; without it the camera is orthographic.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        perspective: Option<f64>,
-    },
-}
-
-/// The camera presets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CameraPreset {
-    /// Orthographic, from +z: x right, y up.
-    Front,
-    /// Orthographic, from the front right and a little above.
-    ThreeQuarter,
-    /// Perspective, from near the ground in front, looking up the vine.
-    Below,
-}
-
-impl Default for CameraSpec {
-    fn default() -> Self {
-        CameraSpec::Preset(CameraPreset::Front)
-    }
-}
-
-impl CameraSpec {
-    fn is_front(&self) -> bool {
-        *self == CameraSpec::default()
-    }
-}
-
 fn default_internode() -> f64 {
     60.0
 }
@@ -309,9 +267,6 @@ fn origin() -> Vec<[f64; 3]> {
 }
 fn is_origin(p: &Vec<[f64; 3]>) -> bool {
     *p == origin()
-}
-fn y_up() -> [f64; 3] {
-    [0.0, 1.0, 0.0]
 }
 fn all_parts() -> Vec<Part> {
     vec![Part::Stem, Part::Leaves, Part::Supports]
@@ -363,7 +318,7 @@ impl Default for VineSpec {
 /// Coordinates of the model stay within this many mm of the origin.
 const MAX_MODEL: f64 = 1e5;
 
-fn vec3(field: &str, p: [f64; 3]) -> Result<DVec3> {
+pub(super) fn vec3(field: &str, p: [f64; 3]) -> Result<DVec3> {
     for v in p {
         if !(v.is_finite() && v.abs() <= MAX_MODEL) {
             return Err(Error::invalid(
@@ -542,33 +497,7 @@ impl Family for VineSpec {
         // Meshes are read later, by the caller; here only their numbers
         // are checked.
         self.shapes(f, &|_| Ok(TriMesh::default()))?;
-        if let CameraSpec::Placed {
-            eye,
-            target,
-            up,
-            perspective,
-        } = self.camera
-        {
-            let field = format!("{f}.camera");
-            let eye = vec3(&format!("{field}.eye"), eye)?;
-            let target = vec3(&format!("{field}.target"), target)?;
-            let up = vec3(&format!("{field}.up"), up)?;
-            if eye.distance(target) < 1e-6 {
-                return Err(Error::invalid(
-                    format!("{field}.target"),
-                    "is where the eye is: look at another point",
-                ));
-            }
-            if up.cross(target - eye).length() < 1e-9 * up.length() * eye.distance(target) {
-                return Err(Error::invalid(
-                    format!("{field}.up"),
-                    "must not lie along the line of sight (nor be zero)",
-                ));
-            }
-            if let Some(fov) = perspective {
-                range(&format!("{field}.perspective"), fov, 1.0, 170.0)?;
-            }
-        }
+        self.camera.check(&format!("{f}.camera"))?;
         if let Some([x0, y0, x1, y1]) = self.fit {
             let field = format!("{f}.fit");
             for v in [x0, y0, x1, y1] {

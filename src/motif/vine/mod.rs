@@ -11,6 +11,14 @@
 //!   by casting rays from the eye ([`crate::geom::hidden`]): exact for the
 //!   plotter, no raster. So the stem passes behind its pole on one side and
 //!   hides it on the other, and leaves hide what is behind them.
+//! * **Camera** ([`crate::spec::CameraSpec`]): `"front"`,
+//!   `"three-quarter"` and an orbit (`{ turn, tilt }`, degrees round the
+//!   vertical from the front and above the horizontal) look at the middle
+//!   of the box holding the plant and its supports, orthographic from 2 ×
+//!   its diagonal away, or, for an orbit in perspective, from where the
+//!   sphere round the box just fills the field of view; front is the
+//!   orbit at 0, 0. `"below"` looks up the vine from near the ground; a
+//!   placed camera is where its table puts it.
 //! * **Fitted**: the camera's picture of all parts is fitted into `fit`
 //!   (the page inside its margins by default), aspect kept, centred, and
 //!   `draw` picks the parts this table draws; so the same vine in two

@@ -16,7 +16,7 @@ use crate::geom::camera::Camera;
 use crate::geom::ear_clip;
 use crate::geom::hidden::{tube_silhouette, Occluders};
 use crate::motif::Drawing;
-use crate::spec::{CameraPreset, CameraSpec, Part};
+use crate::spec::{CameraPreset, CameraSpec, Orbit, Part};
 use crate::vine::{tube, Leaf, Plant, Shape, Supports, TriMesh};
 
 /// How far (mm) a support's hiding triangles lie inside its surface.
@@ -256,18 +256,21 @@ fn bounds3(plant: &Plant, supports: &Supports) -> (DVec3, DVec3) {
     (lo, hi)
 }
 
-/// The camera a spec asks for; presets look at the middle of `bounds`.
+/// The camera a spec asks for; presets and orbits look at the middle of
+/// `bounds`.
 fn camera(spec: &CameraSpec, (lo, hi): &(DVec3, DVec3)) -> Camera {
     let centre = 0.5 * (*lo + *hi);
     let size = (*hi - *lo).length().max(1.0);
-    match *spec {
-        CameraSpec::Preset(CameraPreset::Front) => {
-            Camera::orthographic(centre + DVec3::Z * 2.0 * size, centre, DVec3::Y)
-        }
+    let (from, perspective) = match *spec {
+        CameraSpec::Preset(CameraPreset::Front) => (Orbit::FRONT.direction(), None),
+        // The preset keeps its own direction, so that drawings made with
+        // it stay as they were: its angles (`Orbit::THREE_QUARTER`) give
+        // it only to the last bit, which can move a point the
+        // simplification keeps.
         CameraSpec::Preset(CameraPreset::ThreeQuarter) => {
-            let from = DVec3::new(0.8, 0.45, 1.0).normalize();
-            Camera::orthographic(centre + from * 2.0 * size, centre, DVec3::Y)
+            (DVec3::new(0.8, 0.45, 1.0).normalize(), None)
         }
+        CameraSpec::Orbit(orbit) => (orbit.direction(), orbit.perspective),
         CameraSpec::Preset(CameraPreset::Below) => {
             let height = hi.y - lo.y;
             let eye = DVec3::new(
@@ -276,7 +279,7 @@ fn camera(spec: &CameraSpec, (lo, hi): &(DVec3, DVec3)) -> Camera {
                 hi.z + 0.45 * height.max(hi.x - lo.x),
             );
             let target = DVec3::new(centre.x, lo.y + 0.6 * height, centre.z);
-            Camera::perspective(eye, target, DVec3::Y, 60.0)
+            return Camera::perspective(eye, target, DVec3::Y, 60.0);
         }
         CameraSpec::Placed {
             eye,
@@ -289,11 +292,20 @@ fn camera(spec: &CameraSpec, (lo, hi): &(DVec3, DVec3)) -> Camera {
                 DVec3::from_array(target),
                 DVec3::from_array(up),
             );
-            match perspective {
+            return match perspective {
                 Some(fov) => Camera::perspective(eye, target, up, fov),
                 None => Camera::orthographic(eye, target, up),
-            }
+            };
         }
+    };
+    match perspective {
+        // The sphere round the box (diameter `size`) just fits the field
+        // of view.
+        Some(fov) => {
+            let distance = 0.5 * size / (0.5 * fov.to_radians()).sin();
+            Camera::perspective(centre + from * distance, centre, DVec3::Y, fov)
+        }
+        None => Camera::orthographic(centre + from * 2.0 * size, centre, DVec3::Y),
     }
 }
 
