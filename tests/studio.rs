@@ -592,3 +592,71 @@ fn the_command_starts_on_a_json_description_as_toml_and_names_a_broken_one() {
     let e = String::from_utf8_lossy(&out.stderr);
     assert!(e.contains("bad.json:3:"), "{e}");
 }
+
+#[test]
+fn switches_and_words_are_fields_too() {
+    let text = moyo::templates::get("lsystem-sketch-s").unwrap().text;
+    let (studio, _dir) = studio(text);
+    let addr = studio.addr();
+    let fields = get(addr, "/api/fields").json();
+    let find = |name: &str| {
+        fields
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["field"] == name)
+            .unwrap_or_else(|| panic!("{name} in {fields}"))
+            .clone()
+    };
+    let style = find("layers[0].lsystem[0].style");
+    assert_eq!(style["kind"], "choice");
+    assert_eq!(style["value"], "outline");
+    let options = style["options"].as_array().unwrap();
+    assert!(
+        options.contains(&"outline".into()) && options.len() >= 2,
+        "{style}"
+    );
+    let silhouettes = find("plot.occlude.silhouettes");
+    assert_eq!(
+        (silhouettes["kind"].clone(), silhouettes["value"].clone()),
+        ("bool".into(), true.into())
+    );
+    // Free text (names, ids, colours) is not a choice.
+    assert!(fields
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|f| f["field"] != "layers[0].name"));
+    // Both change in place, as one edit.
+    let changed = call(
+        addr,
+        "PATCH",
+        "/api/fields",
+        &["Content-Type: application/json"],
+        serde_json::json!({"changes": [
+            {"field": "layers[0].lsystem[0].style", "value": "stroke"},
+            {"field": "plot.occlude.silhouettes", "value": false},
+        ]})
+        .to_string()
+        .as_bytes(),
+    );
+    assert_eq!(changed.status, 200, "{}", changed.text());
+    let written = get(addr, "/api/scene").text();
+    assert!(
+        written.contains("style = \"stroke\"\n") && written.contains("silhouettes = false\n"),
+        "{written}"
+    );
+    // A word the field does not take: 422 with its place, the design as it was.
+    let refused = call(
+        addr,
+        "PATCH",
+        "/api/field",
+        &["Content-Type: application/json"],
+        serde_json::json!({"field": "layers[0].lsystem[0].style", "value": "wavy"})
+            .to_string()
+            .as_bytes(),
+    );
+    assert_eq!(refused.status, 422);
+    assert_eq!(refused.json()["path"], "layers[0].lsystem[0].style");
+    studio.stop();
+}

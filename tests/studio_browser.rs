@@ -527,3 +527,32 @@ fn a_tree_dragged_in_the_arrange_tool_moves_and_is_written_as_its_adjustment() {
     );
     studio.stop();
 }
+
+#[test]
+fn a_drag_in_the_turn_tool_turns_the_camera_round_a_vine() {
+    let Some(browser) = Browser::start() else {
+        return;
+    };
+    let (studio, _dir) = studio(moyo::templates::get("vine-basic").unwrap().text);
+    browser.open(&studio.url());
+    let before = browser.wait_for("the first preview", PREVIEW);
+    browser.wait_for(
+        "the vines to turn",
+        "return document.getElementById('vine-target').value === 'layers[0].vine[0]';",
+    );
+    browser.click("input[name=tool][value=orbit]");
+    browser.drag("#preview svg", -120, 40);
+    // Dragged 120 px to the left: the camera went round to the right by
+    // a quarter degree a pixel; 36 px down (six steps of 6): from above.
+    // Every step of the drag counts, even those made while a render was
+    // on its way.
+    browser.wait_for(
+        "the camera to be written",
+        "return document.getElementById('text').value.includes('camera = { turn = 30.0, tilt = 9.0 }');",
+    );
+    browser.wait_for(
+        "the turned vine",
+        &format!("return (() => {{ {PREVIEW} }})() !== {};", json!(before)),
+    );
+    studio.stop();
+}

@@ -411,3 +411,62 @@ fn arranging_a_tree_is_written_as_its_adjustment() {
     assert_eq!(call(addr, "GET", "/api/state", &[], b"").json()["undo"], 7);
     studio.stop();
 }
+
+#[test]
+fn turning_the_camera_round_a_vine_writes_its_orbit() {
+    let text = moyo::templates::get("vine-basic").unwrap().text;
+    let (studio, _dir) = studio(text);
+    let addr = studio.addr();
+    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    assert_eq!(targets["vine"][0]["field"], "layers[0].vine[0]");
+    assert_eq!(targets["vine"][0]["orbits"], true);
+    let turn = |turn: f64, tilt: f64| {
+        let answer = post(
+            addr,
+            "/api/orbit",
+            &json!({"target": "layers[0].vine[0]", "turn": turn, "tilt": tilt}),
+        );
+        assert_eq!(answer.status, 200, "{}", answer.text());
+        let spec = moyo::ValidSpec::parse(&scene(addr), moyo::Format::Toml).unwrap();
+        spec.spec().layers[0].vine[0].camera.orbit().unwrap()
+    };
+    let front = call(addr, "GET", "/api/svg", &[], b"").text();
+    // From the front preset: the turns add up, to a tenth of a degree.
+    let o = turn(30.04, 10.0);
+    assert_eq!((o.turn, o.tilt, o.perspective), (30.0, 10.0, None));
+    assert!(scene(addr).contains("camera = { turn = 30.0, tilt = 10.0 }"));
+    assert_ne!(call(addr, "GET", "/api/svg", &[], b"").text(), front);
+    let o = turn(170.0, 100.0);
+    // Round past the back; never straight down.
+    assert_eq!((o.turn, o.tilt), (-160.0, 89.0));
+    // Back to the front: the drawing is the front preset's again.
+    turn(160.0, -89.0);
+    assert_eq!(
+        drawing(&call(addr, "GET", "/api/svg", &[], b"").text()),
+        drawing(&front)
+    );
+    // A camera that does not turn says so, and nothing changes.
+    studio.stop();
+    let below = text.replace("[[layers.vine]]\n", "[[layers.vine]]\ncamera = \"below\"\n");
+    let (studio, _dir) = crate::studio::studio(&below);
+    let addr = studio.addr();
+    assert_eq!(
+        call(addr, "GET", "/api/targets", &[], b"").json()["vine"][0]["orbits"],
+        false
+    );
+    let refused = post(
+        addr,
+        "/api/orbit",
+        &json!({"target": "layers[0].vine[0]", "turn": 5}),
+    );
+    assert_eq!(refused.status, 422);
+    assert_eq!(refused.json()["path"], "layers[0].vine[0].camera");
+    assert_eq!(scene(addr), below);
+    let refused = post(
+        addr,
+        "/api/orbit",
+        &json!({"target": "layers[0].vine[3]", "turn": 5}),
+    );
+    assert_eq!(refused.status, 422);
+    studio.stop();
+}

@@ -210,6 +210,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn switches_and_words_are_found_with_what_they_take() {
+        let text = "version = 1\n[plot.occlude]\nsilhouettes = true\n[[layers]]\nname = \"a\"\n\
+                    [[layers.voronoi]]\nid = \"v\"\nsites = { distribution = \"grid\" }\n";
+        let v: toml::Value = toml::from_str(text).unwrap();
+        assert_eq!(
+            booleans(&v),
+            [("plot.occlude.silhouettes".to_string(), true)]
+        );
+        let found = choices(&v);
+        // Names and ids are free text; the distribution takes three words.
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].field, "layers[0].voronoi[0].sites.distribution");
+        assert_eq!(found[0].value, "grid");
+        assert_eq!(found[0].options, ["uniform", "grid", "poisson"]);
+    }
+
+    #[test]
     fn lines_of_points_are_found_by_their_paths() {
         let v: toml::Value =
             toml::from_str("a = [{ b = [[1, 2], [3, 4.5]] }]\nc = { d = [[5, 6]] }").unwrap();

@@ -16,14 +16,14 @@ use axum::{Json, Router};
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use super::edit::set_number;
+use super::edit::Edit;
 use super::gesture;
 use super::pen::Stroke;
 use super::session::{Good, Move, Session};
 use crate::error::Error;
 use crate::output::write_atomic;
 use crate::project::{plot_scene, PlotFormat, PlotJob};
-use crate::spec::field::{number_at, point_lists, value_at, xy};
+use crate::spec::field::{booleans, choices, number_at, point_lists, value_at, xy};
 
 /// The most bytes a request may send (a description, a field change).
 pub const MAX_BODY: usize = 4 * 1024 * 1024;
@@ -260,32 +260,51 @@ fn error_fields(e: &Error) -> Value {
     })
 }
 
-/// Every numeric field of the last good description with its range and
-/// value, for the page's form.
+/// Every field of the last good description the form shows: each number
+/// with its range (`"kind": "number"`), each `true`/`false` (`"bool"`),
+/// each text that takes one of a few words, with them (`"choice"`).
 async fn fields(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let value = &good.value;
-    let mut seen = std::collections::BTreeSet::new();
-    let list: Vec<Value> = good
-        .spec
-        .ranges()
-        .into_iter()
-        // A field checked twice (a margin on each side) is listed once.
-        .filter(|r| seen.insert(r.field.clone()))
-        .map(|r| {
-            let now = number_at(value, &r.field);
-            json!({"field": r.field, "lo": r.lo, "hi": r.hi, "integer": r.integer, "value": now})
-        })
-        .collect();
-    Json(list).into_response()
+    let listed = tokio::task::spawn_blocking(move || {
+        let value = &good.value;
+        let mut seen = std::collections::BTreeSet::new();
+        let mut list: Vec<Value> = good
+            .spec
+            .ranges()
+            .into_iter()
+            // A field checked twice (a margin on each side) is listed once.
+            .filter(|r| seen.insert(r.field.clone()))
+            .map(|r| {
+                let now = number_at(value, &r.field);
+                json!({"field": r.field, "kind": "number", "lo": r.lo, "hi": r.hi,
+                       "integer": r.integer, "value": now})
+            })
+            .collect();
+        list.extend(
+            booleans(value)
+                .into_iter()
+                .map(|(field, b)| json!({"field": field, "kind": "bool", "value": b})),
+        );
+        list.extend(choices(value).into_iter().map(
+            |c| json!({"field": c.field, "kind": "choice", "value": c.value, "options": c.options}),
+        ));
+        list
+    })
+    .await;
+    match listed {
+        Ok(list) => Json(list).into_response(),
+        Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+    }
 }
 
 #[derive(Deserialize)]
 struct FieldChange {
     field: String,
-    value: f64,
+    /// A number, `true`/`false` or a word.
+    value: Value,
+    /// A number written as a whole number.
     #[serde(default)]
     integer: bool,
 }
@@ -306,13 +325,29 @@ async fn patch_fields(State(app): State<App>, Json(request): Json<FieldChanges>)
 }
 
 async fn edit_fields(app: &App, changes: &[FieldChange]) -> Response {
-    let mut text = app.session.text();
-    for change in changes {
-        text = match set_number(&text, &change.field, change.value, change.integer) {
-            Ok(t) => t,
-            Err(e) => return failure(&e),
-        };
-    }
+    let written = Edit::parse(&app.session.text()).and_then(|mut edit| {
+        for change in changes {
+            match &change.value {
+                Value::Number(n) => {
+                    let n = n.as_f64().unwrap_or(f64::NAN);
+                    edit.set_number(&change.field, n, change.integer)?;
+                }
+                Value::Bool(b) => edit.set(&change.field, *b)?,
+                Value::String(word) => edit.set(&change.field, word.as_str())?,
+                _ => {
+                    return Err(Error::invalid(
+                        &change.field,
+                        "give a number, true or false, or a word",
+                    ))
+                }
+            }
+        }
+        Ok(edit.text())
+    });
+    let text = match written {
+        Ok(text) => text,
+        Err(e) => return failure(&e),
+    };
     match apply(app, text, Move::Edit).await {
         Ok(good) => changed(app, &good),
         Err(response) => response,

@@ -188,18 +188,6 @@ pub(crate) fn point_list(points: &[[f64; 2]]) -> Array {
     list
 }
 
-/// `text` with the number at `field` set to `value` (see
-/// [`Edit::set_number`]).
-///
-/// # Errors
-/// [`Error::Parse`] for text that is not TOML, [`Error::Invalid`] at
-/// `field` for a path that does not lead to a number's place.
-pub(crate) fn set_number(text: &str, field: &str, value: f64, integer: bool) -> Result<String> {
-    let mut edit = Edit::parse(text)?;
-    edit.set_number(field, value, integer)?;
-    Ok(edit.text())
-}
-
 /// Runs `op` where `steps` lead below a table (`[x]` or `{ … }`).
 fn in_table(
     table: &mut dyn TableLike,
@@ -271,6 +259,12 @@ fn replace(old: &mut Value, mut value: Value) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn set_number(text: &str, field: &str, value: f64, integer: bool) -> Result<String> {
+        let mut edit = Edit::parse(text)?;
+        edit.set_number(field, value, integer)?;
+        Ok(edit.text())
+    }
     use toml_edit::{Array, Item, Table};
 
     const TEXT: &str = "# my design\nversion = 1\n\n[[layers]]\nname = \"a\"\n\n\

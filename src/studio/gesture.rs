@@ -3,7 +3,8 @@
 //! a click gives a zentangle region its procedure (a manual step), a
 //! Voronoi table's sites are pinned (written as its `points`, which the
 //! page then drags as handles), a tree, flower, leaf or plant dragged,
-//! turned, scaled or hidden becomes its `[[adjust]]`. What each family
+//! turned, scaled or hidden becomes its `[[adjust]]`, a vine's camera
+//! turned round it becomes its `camera = { turn, tilt }`. What each family
 //! offers to a gesture is listed by `GET /api/targets`.
 
 use axum::extract::State;
@@ -31,6 +32,7 @@ pub(super) fn routes() -> Router<App> {
         .route("/api/fill", post(fill))
         .route("/api/pin", post(pin))
         .route("/api/adjust", post(adjust))
+        .route("/api/orbit", post(orbit))
 }
 
 /// What the gestures can work on in the last good design: the layers
@@ -44,6 +46,7 @@ async fn targets(State(app): State<App>) -> Response {
     let mut sketch = Vec::new();
     let mut zentangle = Vec::new();
     let mut voronoi = Vec::new();
+    let mut vine = Vec::new();
     let layers: Vec<Value> = spec
         .layers
         .iter()
@@ -65,6 +68,13 @@ async fn targets(State(app): State<App>) -> Response {
                         target["pinned"] = v.sites.points.is_some().into();
                         voronoi.push(target);
                     }
+                    Table::Vine(v) => {
+                        let mut target = target;
+                        // "below" and placed perspective cameras do not
+                        // turn: the page says so rather than jump.
+                        target["orbits"] = v.camera.orbit().is_some().into();
+                        vine.push(target);
+                    }
                     _ => {}
                 }
             }
@@ -76,6 +86,7 @@ async fn targets(State(app): State<App>) -> Response {
         "sketch": sketch,
         "zentangle": zentangle,
         "voronoi": voronoi,
+        "vine": vine,
     }))
     .into_response()
 }
@@ -389,6 +400,71 @@ async fn adjust(State(app): State<App>, Json(change): Json<Adjust>) -> Response 
             }
             edit.push_table("adjust", table, false)?;
         }
+        Ok(edit.text())
+    });
+    match text {
+        Ok(text) => match apply(&app, text, Move::Gesture).await {
+            Ok(good) => changed(&app, &good),
+            Err(response) => response,
+        },
+        Err(e) => failure(&e),
+    }
+}
+
+#[derive(Deserialize)]
+struct Turn {
+    /// The vine table's field path.
+    target: String,
+    /// Degrees more about the vertical (positive: the camera goes round
+    /// towards +x).
+    #[serde(default)]
+    turn: f64,
+    /// Degrees more above the horizontal.
+    #[serde(default)]
+    tilt: f64,
+}
+
+/// The camera of a vine turned round it: written as `camera = { turn,
+/// tilt }` (a preset or a placed camera first becomes the orbit that sees
+/// the same), the turn kept in −180–180 and the tilt in −89–89.
+async fn orbit(State(app): State<App>, Json(change): Json<Turn>) -> Response {
+    let Some(good) = app.session.good() else {
+        return nothing_rendered();
+    };
+    if !(change.turn.is_finite() && change.tilt.is_finite()) {
+        return failure(&Error::invalid("turn", "the turn is not a finite number"));
+    }
+    let place = change
+        .target
+        .strip_prefix("layers[")
+        .and_then(|rest| rest.split_once("].vine["))
+        .and_then(|(l, t)| Some((l.parse().ok()?, t.strip_suffix(']')?.parse().ok()?)));
+    let table =
+        place.and_then(|(l, t): (usize, usize)| good.spec.spec().layers.get(l)?.vine.get(t));
+    let Some(table) = table else {
+        return failure(&Error::invalid(
+            &change.target,
+            "is not a vine of the design",
+        ));
+    };
+    let field = format!("{}.camera", change.target);
+    let Some(now) = table.camera.orbit() else {
+        return failure(&Error::invalid(
+            &field,
+            "this camera does not turn round the vine (\"below\" and perspective cameras              placed by hand): give camera = { turn = 0, tilt = 10 } to turn it",
+        ));
+    };
+    let tenth = |v: f64| (v * 10.0).round() / 10.0;
+    let turn = tenth(180.0 - (180.0 - (now.turn + change.turn)).rem_euclid(360.0));
+    let tilt = tenth((now.tilt + change.tilt).clamp(-89.0, 89.0));
+    let mut camera = toml_edit::InlineTable::new();
+    camera.insert("turn", turn.into());
+    camera.insert("tilt", tilt.into());
+    if let Some(fov) = now.perspective {
+        camera.insert("perspective", fov.into());
+    }
+    let text = Edit::parse(&good.text).and_then(|mut edit| {
+        edit.set(&field, camera)?;
         Ok(edit.text())
     });
     match text {
