@@ -65,6 +65,7 @@
 #[cfg(feature = "cli")]
 use {clap as _, indicatif as _};
 
+mod cancel;
 mod error;
 pub mod fuzz;
 pub mod geom;

@@ -20,6 +20,7 @@ use crate::scene::{Color, Group, Layer, Model, Pen, Scene};
 use crate::spec::{LayerItem, LayerSpec, MotifRef, Points, Table, ValidSpec, VoronoiSpec};
 use crate::vine::TriMesh;
 
+pub use crate::cancel::Cancel;
 pub use crate::motif::{Note, Progress};
 
 mod fill;
@@ -409,44 +410,10 @@ pub fn render_with_progress(
     render_cancellable(spec, library, progress, Cancel::never())
 }
 
-/// A flag another thread raises to call off a render (see
-/// [`render_cancellable`]).
-#[derive(Debug, Default)]
-pub struct Cancel(std::sync::atomic::AtomicBool);
-
-/// The flag of work that is never called off.
-static NEVER: Cancel = Cancel(std::sync::atomic::AtomicBool::new(false));
-
-impl Cancel {
-    /// A flag nobody raises (crate-only: raising it would call off every
-    /// render that uses it).
-    pub(crate) fn never() -> &'static Cancel {
-        &NEVER
-    }
-
-    /// Calls the work off.
-    pub fn raise(&self) {
-        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
-    }
-
-    /// Whether the work was called off.
-    pub fn is_raised(&self) -> bool {
-        self.0.load(std::sync::atomic::Ordering::Relaxed)
-    }
-
-    /// [`Error::Cancelled`] once the work was called off.
-    pub(crate) fn check(&self) -> Result<()> {
-        if self.is_raised() {
-            Err(Error::Cancelled)
-        } else {
-            Ok(())
-        }
-    }
-}
-
 /// [`render_with_progress`] that stops with [`Error::Cancelled`] soon
 /// after `cancel` is raised: between tables, whenever a generator takes
-/// paths from the budget, and before the plot stages and the SVG.
+/// paths from the budget, between the plot stages and inside hidden-line
+/// removal, and before the SVG.
 ///
 /// # Errors
 /// As [`render_with_progress`], and [`Error::Cancelled`].
@@ -459,7 +426,7 @@ pub fn render_cancellable(
     let (scene, notes, models) =
         build(spec, library, progress, cancel).map_err(|e| spec.locate(e))?;
     cancel.check()?;
-    let scene = plot::run(scene, &spec.plot)?;
+    let scene = plot::run_cancellable(scene, &spec.plot, cancel)?;
     cancel.check()?;
     let options = svg_options(spec);
     let svg = to_svg(&scene, &options);

@@ -36,5 +36,6 @@ pub use dump::path_dump;
 pub use number::{grouped, write_number};
 pub use obj::to_obj;
 pub use preview::{check_dpi, render_png};
+#[cfg(feature = "studio")]
 pub(crate) use svg::write_path_data;
 pub use svg::{to_svg, SvgOptions};

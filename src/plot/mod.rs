@@ -18,7 +18,7 @@ pub use hatch::HatchOptions;
 pub use merge::MergeOptions;
 pub use multipass::MultipassOptions;
 pub use occlude::OccludeOptions;
-pub use pipeline::{run, PlotOptions};
+pub use pipeline::{run, run_cancellable, PlotOptions};
 pub use simplify::SimplifyOptions;
 pub use sort::SortOptions;
 pub use stats::{stats, PlotStats, Speeds};

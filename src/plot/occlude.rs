@@ -85,6 +85,7 @@ use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 use serde::{Deserialize, Serialize};
 
+use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::geom::clip::StrokeClipper;
 use crate::geom::path_length;
@@ -207,6 +208,15 @@ impl Default for OccludeOptions {
 /// that is not finite or lies beyond [`crate::units::MAX_COORD`] (field
 /// `occlude.paths[<id>]`). The scene is unchanged on error.
 pub fn run(scene: &mut Scene, o: &OccludeOptions) -> Result<()> {
+    run_cancellable(scene, o, Cancel::never())
+}
+
+/// [`run`] that stops with [`Error::Cancelled`] soon after `cancel` is
+/// raised: between layers' silhouettes and between paths. Its paths are
+/// then as they were, though silhouettes already merged stay merged (they
+/// draw what their members drew): a called-off scene is meant to be
+/// dropped.
+pub fn run_cancellable(scene: &mut Scene, o: &OccludeOptions, cancel: &Cancel) -> Result<()> {
     o.validate()?;
     for id in &o.skip_layers {
         if !scene.layers.iter().any(|l| &l.id == id) {
@@ -234,6 +244,7 @@ pub fn run(scene: &mut Scene, o: &OccludeOptions) -> Result<()> {
 
     if o.silhouettes {
         for &li in &order {
+            cancel.check()?;
             silhouettes_below(&mut scene.layers[li].content, page);
         }
         // Cannot fail: silhouettes are checked as they are made.
@@ -260,7 +271,9 @@ pub fn run(scene: &mut Scene, o: &OccludeOptions) -> Result<()> {
         &occluders,
         o.preview_fills.then(|| page.inverse()),
         o.tolerance,
+        cancel,
     );
+    cancel.check()?;
 
     let mut per_layer: Vec<Vec<Outcome>> = vec![Vec::new(); scene.layers.len()];
     for (p, outcome) in painted.iter().zip(outcomes) {
@@ -416,6 +429,7 @@ fn hide(
     occluders: &[Occluder],
     fills_to: Option<Affine>,
     tolerance: f64,
+    cancel: &Cancel,
 ) -> Vec<Outcome> {
     let preview_fills = fills_to.is_some();
     let drawable = fills_to.unwrap_or(Affine::IDENTITY);
@@ -437,7 +451,8 @@ fn hide(
         .iter()
         .enumerate()
         .map(|(paint, p)| {
-            if p.mask || !invertible(p.to_page) {
+            // Called off: the rest is not looked at (the caller drops it).
+            if p.mask || !invertible(p.to_page) || cancel.is_raised() {
                 return Outcome::Keep;
             }
             let segment_boxes: Vec<Rect> = p.page.segments().map(|s| s.bounding_box()).collect();
@@ -803,6 +818,22 @@ mod tests {
             .filter(|e| matches!(e, PathEl::MoveTo(_)))
             .count();
         assert_eq!(moves, 1, "{back:?}");
+    }
+
+    #[test]
+    fn called_off_it_stops_and_leaves_the_paths_as_they_were() {
+        let mut s = two_squares();
+        let cancel = Cancel::default();
+        cancel.raise();
+        let e = run_cancellable(&mut s, &OccludeOptions::DEFAULT, &cancel).unwrap_err();
+        assert!(matches!(e, Error::Cancelled), "{e}");
+        assert!((layer_length(&s, "back") - 40.0).abs() < 1e-9);
+        let plotted = crate::plot::run_cancellable(
+            two_squares(),
+            &crate::plot::PlotOptions::default(),
+            &cancel,
+        );
+        assert!(matches!(plotted, Err(Error::Cancelled)));
     }
 
     #[test]

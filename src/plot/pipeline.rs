@@ -18,6 +18,7 @@ use super::{
     flatten, hatch, merge, multipass, occlude, simplify, sort, transform, HatchOptions,
     MergeOptions, MultipassOptions, OccludeOptions, SimplifyOptions, SortOptions, TransformOptions,
 };
+use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::scene::{Group, Node, Scene};
 
@@ -157,7 +158,14 @@ fn prefix(e: Error, prefix: &str) -> Error {
 
 /// Runs the configured stages. Without per-pen stages the scene keeps its
 /// layers, groups and ids; with them it becomes one flat layer per pen.
-pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
+pub fn run(scene: Scene, o: &PlotOptions) -> Result<Scene> {
+    run_cancellable(scene, o, Cancel::never())
+}
+
+/// [`run`] that stops with [`Error::Cancelled`](crate::Error::Cancelled)
+/// soon after `cancel` is raised: between the stages, and inside
+/// hidden-line removal (the slow one).
+pub fn run_cancellable(mut scene: Scene, o: &PlotOptions, cancel: &Cancel) -> Result<Scene> {
     o.validate("plot")?;
     if let Some(t) = &o.transform {
         transform::apply(&mut scene, t);
@@ -174,8 +182,9 @@ pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
         let mut occ = occ.clone();
         occ.skip_layers
             .retain(|id| !unplotted.iter().any(|(_, l)| l.id == *id));
-        occlude::run(&mut scene, &occ)?;
+        occlude::run_cancellable(&mut scene, &occ, cancel)?;
     }
+    cancel.check()?;
     flatten::restore_unplotted(&mut scene, unplotted);
     // Masks have hidden what they hide (or there was nothing to hide).
     for layer in &mut scene.layers {
@@ -188,6 +197,7 @@ pub fn run(mut scene: Scene, o: &PlotOptions) -> Result<Scene> {
     if let Some(m) = &o.merge {
         merge::run(&mut flat, m);
     }
+    cancel.check()?;
     if let Some(s) = &o.simplify {
         simplify::run(&mut flat, s);
     }
