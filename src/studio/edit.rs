@@ -165,6 +165,23 @@ impl Edit {
     }
 }
 
+/// The layer and table indices of a family's table from its field path:
+/// `(L, T)` for `layers[L].<family>[T]`.
+pub(crate) fn table_index(field: &str, family: &str) -> Option<(usize, usize)> {
+    match steps(field)?.as_slice() {
+        [Step::Key("layers"), Step::Index(l), Step::Key(f), Step::Index(t)] if *f == family => {
+            Some((*l, *t))
+        }
+        _ => None,
+    }
+}
+
+/// `v` to a tenth (of a millimetre, of a degree): what a gesture writes,
+/// finer than a hand places anything.
+pub(crate) fn tenth(v: f64) -> f64 {
+    (v * 10.0).round() / 10.0
+}
+
 /// Points as a TOML list, a few to a line when there are many (a stroke,
 /// a table's sites), so that the description stays readable.
 pub(crate) fn point_list(points: &[[f64; 2]]) -> Array {

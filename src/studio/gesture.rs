@@ -16,7 +16,7 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 
 use super::api::{apply, changed, failure, nothing_rendered, App};
-use super::edit::{point_list, Edit};
+use super::edit::{point_list, table_index, tenth, Edit};
 use super::pen::{Stroke, Target};
 use super::session::Move;
 use crate::error::Error;
@@ -128,6 +128,18 @@ async fn with_stroke<T: Send + 'static>(
     }
 }
 
+/// A gesture's new description, rendered as one edit; where it does not
+/// render, the description stays as it was.
+async fn write(app: &App, text: Result<String, Error>) -> Response {
+    match text {
+        Ok(text) => match apply(app, text, Move::Gesture).await {
+            Ok(good) => changed(app, &good),
+            Err(response) => response,
+        },
+        Err(e) => failure(&e),
+    }
+}
+
 fn no_stroke() -> Error {
     Error::invalid("stroke", "no stroke is being drawn: begin one first")
 }
@@ -181,12 +193,8 @@ async fn stroke_end(State(app): State<App>) -> Response {
         stroke.take().ok_or_else(no_stroke)?.finish(&text)
     })
     .await;
-    let text = match written {
-        Ok(text) => text,
-        Err(response) => return response,
-    };
-    match apply(&app, text, Move::Gesture).await {
-        Ok(good) => changed(&app, &good),
+    match written {
+        Ok(text) => write(&app, Ok(text)).await,
         Err(response) => response,
     }
 }
@@ -210,12 +218,8 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let spec = good.spec.spec();
-    let table = spec.layers.iter().enumerate().find_map(|(l, layer)| {
-        layer.zentangle.iter().enumerate().find_map(|(t, table)| {
-            (format!("layers[{l}].zentangle[{t}]") == click.target).then_some(table)
-        })
-    });
+    let table = table_index(&click.target, "zentangle")
+        .and_then(|(l, t)| good.spec.spec().layers.get(l)?.zentangle.get(t));
     let Some(table) = table else {
         return failure(&Error::invalid(
             &click.target,
@@ -228,8 +232,8 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
     }
     let mut step = toml_edit::Table::new();
     let mut at = toml_edit::Array::new();
-    at.push((x * 10.0).round() / 10.0);
-    at.push((y * 10.0).round() / 10.0);
+    at.push(tenth(x));
+    at.push(tenth(y));
     step.insert("at", toml_edit::value(at));
     step.insert("procedure", toml_edit::value(i64::from(click.procedure)));
     if table.steps > 0 {
@@ -239,13 +243,7 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
         edit.push_table(&format!("{}.manual", click.target), step, true)?;
         Ok(edit.text())
     });
-    match text {
-        Ok(text) => match apply(&app, text, Move::Gesture).await {
-            Ok(good) => changed(&app, &good),
-            Err(response) => response,
-        },
-        Err(e) => failure(&e),
-    }
+    write(&app, text).await
 }
 
 #[derive(Deserialize)]
@@ -261,14 +259,8 @@ async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let place = pin
-        .target
-        .strip_prefix("layers[")
-        .and_then(|rest| rest.split_once("].voronoi["))
-        .and_then(|(l, t)| Some((l.parse().ok()?, t.strip_suffix(']')?.parse().ok()?)));
-    let found = place.and_then(|(l, t): (usize, usize)| {
-        Some((l, t, good.spec.spec().layers.get(l)?.voronoi.get(t)?))
-    });
+    let found = table_index(&pin.target, "voronoi")
+        .and_then(|(l, t)| Some((l, t, good.spec.spec().layers.get(l)?.voronoi.get(t)?)));
     let Some((l, t, table)) = found else {
         return failure(&Error::invalid(
             &pin.target,
@@ -308,13 +300,7 @@ async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
         edit.set(&format!("{sites}.points"), point_list(&points))?;
         Ok(edit.text())
     });
-    match text {
-        Ok(text) => match apply(&app, text, Move::Gesture).await {
-            Ok(good) => changed(&app, &good),
-            Err(response) => response,
-        },
-        Err(e) => failure(&e),
-    }
+    write(&app, text).await
 }
 
 /// A plain TOML value (a number, a string) as an editable one.
@@ -360,7 +346,6 @@ async fn adjust(State(app): State<App>, Json(change): Json<Adjust>) -> Response 
     let list = &good.spec.spec().adjust;
     let old = list.iter().position(|a| a.id == change.id);
     let was = old.map(|i| &list[i]);
-    let tenth = |v: f64| (v * 10.0).round() / 10.0;
     let offset = change.offset.map(|[dx, dy]| {
         let [x, y] = was.and_then(|a| a.offset).unwrap_or([0.0, 0.0]);
         [tenth(x + dx), tenth(y + dy)]
@@ -402,13 +387,7 @@ async fn adjust(State(app): State<App>, Json(change): Json<Adjust>) -> Response 
         }
         Ok(edit.text())
     });
-    match text {
-        Ok(text) => match apply(&app, text, Move::Gesture).await {
-            Ok(good) => changed(&app, &good),
-            Err(response) => response,
-        },
-        Err(e) => failure(&e),
-    }
+    write(&app, text).await
 }
 
 #[derive(Deserialize)]
@@ -434,13 +413,8 @@ async fn orbit(State(app): State<App>, Json(change): Json<Turn>) -> Response {
     if !(change.turn.is_finite() && change.tilt.is_finite()) {
         return failure(&Error::invalid("turn", "the turn is not a finite number"));
     }
-    let place = change
-        .target
-        .strip_prefix("layers[")
-        .and_then(|rest| rest.split_once("].vine["))
-        .and_then(|(l, t)| Some((l.parse().ok()?, t.strip_suffix(']')?.parse().ok()?)));
-    let table =
-        place.and_then(|(l, t): (usize, usize)| good.spec.spec().layers.get(l)?.vine.get(t));
+    let table = table_index(&change.target, "vine")
+        .and_then(|(l, t)| good.spec.spec().layers.get(l)?.vine.get(t));
     let Some(table) = table else {
         return failure(&Error::invalid(
             &change.target,
@@ -454,7 +428,6 @@ async fn orbit(State(app): State<App>, Json(change): Json<Turn>) -> Response {
             "this camera does not turn round the vine (\"below\" and perspective cameras              placed by hand): give camera = { turn = 0, tilt = 10 } to turn it",
         ));
     };
-    let tenth = |v: f64| (v * 10.0).round() / 10.0;
     let turn = tenth(180.0 - (180.0 - (now.turn + change.turn)).rem_euclid(360.0));
     let tilt = tenth((now.tilt + change.tilt).clamp(-89.0, 89.0));
     let mut camera = toml_edit::InlineTable::new();
@@ -467,11 +440,5 @@ async fn orbit(State(app): State<App>, Json(change): Json<Turn>) -> Response {
         edit.set(&field, camera)?;
         Ok(edit.text())
     });
-    match text {
-        Ok(text) => match apply(&app, text, Move::Gesture).await {
-            Ok(good) => changed(&app, &good),
-            Err(response) => response,
-        },
-        Err(e) => failure(&e),
-    }
+    write(&app, text).await
 }

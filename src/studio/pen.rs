@@ -13,7 +13,7 @@ use glam::DVec2;
 use kurbo::BezPath;
 use toml_edit::{Array, Table};
 
-use super::edit::{point_list, Edit};
+use super::edit::{point_list, table_index, tenth, Edit};
 use super::session::Good;
 use crate::error::{Error, Result};
 use crate::motif::GrowingSketch;
@@ -91,7 +91,7 @@ impl Stroke {
         let spec = good.spec.spec();
         let (table, layer, field) = match &target {
             Target::Table(field) => {
-                let place = table_place(field)
+                let place = table_index(field, "lsystem")
                     .and_then(|(l, t)| Some((spec.layers.get(l)?.lsystem.get(t)?, l)));
                 let Some((table, layer)) = place.filter(|(t, _)| t.sketch.is_some()) else {
                     return Err(Error::invalid(field, "is not a sketch table of the design"));
@@ -226,19 +226,6 @@ impl Stroke {
             .find(|id| !taken.contains(id))
             .unwrap_or_default()
     }
-}
-
-/// The layer and table indices of `layers[L].lsystem[T]`.
-fn table_place(field: &str) -> Option<(usize, usize)> {
-    let rest = field.strip_prefix("layers[")?;
-    let (layer, rest) = rest.split_once("].lsystem[")?;
-    let table = rest.strip_suffix(']')?;
-    Some((layer.parse().ok()?, table.parse().ok()?))
-}
-
-/// `v` to a tenth of a millimetre, as written.
-fn tenth(v: f64) -> f64 {
-    (v * 10.0).round() / 10.0
 }
 
 fn path_data(path: &BezPath) -> String {
