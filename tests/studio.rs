@@ -140,7 +140,7 @@ pub(crate) fn call(
     raw(addr, &bytes)
 }
 
-fn get(addr: SocketAddr, path: &str) -> Answer {
+pub(crate) fn get(addr: SocketAddr, path: &str) -> Answer {
     call(addr, "GET", path, &[], b"")
 }
 

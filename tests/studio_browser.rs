@@ -176,13 +176,19 @@ impl Browser {
             steps.push(json!({"type": "pointerMove", "origin": "pointer", "x": dx / 6, "y": dy / 6, "duration": 40}));
         }
         steps.push(json!({"type": "pointerUp", "button": 0}));
+        self.point("mouse", steps);
+    }
+
+    /// Moves, presses and lifts a pointer (`mouse` or `pen`) as `actions`
+    /// say; a pen pressed and not lifted stays down for the next call.
+    fn point(&self, kind: &str, actions: Vec<Value>) {
         self.command(
             "POST",
             "/actions",
             &json!({"actions": [{
-                "type": "pointer", "id": "mouse",
-                "parameters": {"pointerType": "mouse"},
-                "actions": steps,
+                "type": "pointer", "id": kind,
+                "parameters": {"pointerType": kind},
+                "actions": actions,
             }]}),
         );
     }
@@ -391,17 +397,7 @@ fn a_stroke_drawn_with_a_pen_grows_the_sketch_while_the_pen_is_down() {
         }
         list
     };
-    let pen = |actions: Vec<Value>| {
-        browser.command(
-            "POST",
-            "/actions",
-            &json!({"actions": [{
-                "type": "pointer", "id": "pen",
-                "parameters": {"pointerType": "pen"},
-                "actions": actions,
-            }]}),
-        );
-    };
+    let pen = |actions: Vec<Value>| browser.point("pen", actions);
     let mut first = moves(0, 1);
     first.push(json!({"type": "pointerDown", "button": 0}));
     first.extend(moves(1, 20));
@@ -474,18 +470,13 @@ fn a_click_in_a_zentangle_fills_the_region_under_it() {
     assert_eq!(browser.eval(drawn, &[]), json!(0));
     // Click in the lower part of the tile, below the pencil line.
     let svg = browser.element("#preview svg");
-    browser.command(
-        "POST",
-        "/actions",
-        &json!({"actions": [{
-            "type": "pointer", "id": "mouse",
-            "parameters": {"pointerType": "mouse"},
-            "actions": [
-                {"type": "pointerMove", "origin": {ELEMENT: svg}, "x": 0, "y": 120},
-                {"type": "pointerDown", "button": 0},
-                {"type": "pointerUp", "button": 0},
-            ],
-        }]}),
+    browser.point(
+        "mouse",
+        vec![
+            json!({"type": "pointerMove", "origin": {ELEMENT: svg}, "x": 0, "y": 120}),
+            json!({"type": "pointerDown", "button": 0}),
+            json!({"type": "pointerUp", "button": 0}),
+        ],
     );
     browser.wait_for(
         "the region to be filled",

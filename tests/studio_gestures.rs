@@ -8,7 +8,7 @@ use std::net::SocketAddr;
 
 use serde_json::{json, Value};
 
-use crate::studio::{call, studio, Answer, SCENE};
+use crate::studio::{call, get, studio, Answer, SCENE};
 
 fn post(addr: SocketAddr, path: &str, body: &Value) -> Answer {
     call(
@@ -21,7 +21,7 @@ fn post(addr: SocketAddr, path: &str, body: &Value) -> Answer {
 }
 
 fn scene(addr: SocketAddr) -> String {
-    call(addr, "GET", "/api/scene", &[], b"").text()
+    get(addr, "/api/scene").text()
 }
 
 /// A pen stroke up the page in `n` batches of points, scene mm.
@@ -44,7 +44,7 @@ fn a_stroke_grows_its_sketch_while_drawn_and_is_written_when_the_pen_lifts() {
     let text = moyo::templates::get("lsystem-sketch-s").unwrap().text;
     let (studio, _dir) = studio(text);
     let addr = studio.addr();
-    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    let targets = get(addr, "/api/targets").json();
     assert_eq!(targets["sketch"][0]["field"], "layers[0].lsystem[0]");
 
     let begin = post(
@@ -95,7 +95,7 @@ fn a_stroke_grows_its_sketch_while_drawn_and_is_written_when_the_pen_lifts() {
     // The rest of the description is as it was, comments and all.
     assert!(written.contains("# The limbs' outlines merge into one silhouette"));
     // The render is the command line's render of that description.
-    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    let svg = get(addr, "/api/svg").text();
     assert_eq!(svg, moyo::render(&spec).unwrap().svg);
     // One step of the history.
     let undone = post(addr, "/api/undo", &json!({}));
@@ -107,7 +107,7 @@ fn a_stroke_grows_its_sketch_while_drawn_and_is_written_when_the_pen_lifts() {
 fn a_stroke_can_start_a_new_sketch_in_a_layer_of_any_design() {
     let (studio, _dir) = studio(SCENE);
     let addr = studio.addr();
-    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    let targets = get(addr, "/api/targets").json();
     assert_eq!(targets["sketch"], json!([]));
     assert_eq!(targets["layers"][0]["name"], "front");
     assert_eq!(
@@ -131,7 +131,7 @@ fn a_stroke_can_start_a_new_sketch_in_a_layer_of_any_design() {
     assert_eq!(table.id.as_deref(), Some("sketch-1"));
     assert!(table.sketch.as_ref().unwrap().points.is_some());
     // The design now has a sketch to draw into.
-    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    let targets = get(addr, "/api/targets").json();
     assert_eq!(targets["sketch"][0]["field"], "layers[0].lsystem[0]");
     studio.stop();
 }
@@ -181,7 +181,7 @@ fn strokes_that_cannot_be_written_leave_the_description_as_it_was() {
     );
     assert!(bad.status >= 400 && bad.status < 500, "{}", bad.status);
     assert_eq!(scene(addr), SCENE);
-    assert_eq!(call(addr, "GET", "/api/state", &[], b"").json()["undo"], 0);
+    assert_eq!(get(addr, "/api/state").json()["undo"], 0);
     studio.stop();
 }
 
@@ -211,10 +211,10 @@ fn steps_drawn(svg: &str) -> Vec<String> {
 fn a_click_gives_the_white_region_under_it_a_procedure() {
     let (studio, _dir) = studio(TILE);
     let addr = studio.addr();
-    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    let targets = get(addr, "/api/targets").json();
     assert_eq!(targets["zentangle"][0]["field"], "layers[0].zentangle[0]");
     assert_eq!(targets["zentangle"][0]["group"], "tile.tile");
-    assert!(steps_drawn(&call(addr, "GET", "/api/svg", &[], b"").text()).is_empty());
+    assert!(steps_drawn(&get(addr, "/api/svg").text()).is_empty());
     // Below the line: Voronoi cells there.
     let click = json!({"target": "layers[0].zentangle[0]", "at": [44.44, 70.01], "procedure": 18});
     let filled = post(addr, "/api/fill", &click);
@@ -224,12 +224,12 @@ fn a_click_gives_the_white_region_under_it_a_procedure() {
         written.contains("manual = [{ at = [44.4, 70.0], procedure = 18 }]"),
         "{written}"
     );
-    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    let svg = get(addr, "/api/svg").text();
     assert_eq!(steps_drawn(&svg), ["step-1-p18"]);
     // Above the line, contour lines: a second step, appended.
     let click = json!({"target": "layers[0].zentangle[0]", "at": [44, 10], "procedure": 16});
     assert_eq!(post(addr, "/api/fill", &click).status, 200);
-    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    let svg = get(addr, "/api/svg").text();
     assert_eq!(steps_drawn(&svg), ["step-1-p18", "step-2-p16"]);
     // Off the tile: nothing there to fill, and nothing changes.
     let before = scene(addr);
@@ -266,7 +266,7 @@ fn a_click_on_a_filled_tile_touches_up_what_the_loop_left_white() {
     let text = TILE.replace("steps = 0", "steps = 4");
     let (studio, _dir) = studio(&text);
     let addr = studio.addr();
-    let before = steps_drawn(&call(addr, "GET", "/api/svg", &[], b"").text());
+    let before = steps_drawn(&get(addr, "/api/svg").text());
     // Some point of the tile that the four steps left white.
     let filled = (1..15)
         .flat_map(|i| (1..15).map(move |j| [f64::from(i) * 6.0, f64::from(j) * 6.0]))
@@ -284,7 +284,7 @@ fn a_click_on_a_filled_tile_touches_up_what_the_loop_left_white() {
         written.contains("procedure = 2, after = true }]"),
         "{written}"
     );
-    let after = steps_drawn(&call(addr, "GET", "/api/svg", &[], b"").text());
+    let after = steps_drawn(&get(addr, "/api/svg").text());
     // The loop's steps as they were, and one more.
     assert_eq!(after[..before.len()], before[..]);
     assert_eq!(after.len(), before.len() + 1);
@@ -305,10 +305,10 @@ fn pinned_voronoi_sites_draw_the_same_and_then_drag_as_handles() {
     let text = moyo::templates::get("voronoi-stained-glass").unwrap().text;
     let (studio, _dir) = studio(text);
     let addr = studio.addr();
-    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    let targets = get(addr, "/api/targets").json();
     assert_eq!(targets["voronoi"][0]["field"], "layers[0].voronoi[0]");
     assert_eq!(targets["voronoi"][0]["pinned"], false);
-    let before = call(addr, "GET", "/api/svg", &[], b"").text();
+    let before = get(addr, "/api/svg").text();
     let pinned = post(addr, "/api/pin", &json!({"target": "layers[0].voronoi[0]"}));
     assert_eq!(pinned.status, 200, "{}", pinned.text());
     let written = scene(addr);
@@ -321,14 +321,14 @@ fn pinned_voronoi_sites_draw_the_same_and_then_drag_as_handles() {
     assert_eq!(sites.distribution, None);
     assert!(written.contains("# The lead: every edge between two panes once"));
     // And the design is as it was.
-    let after = call(addr, "GET", "/api/svg", &[], b"").text();
+    let after = get(addr, "/api/svg").text();
     assert_eq!(drawing(&after), drawing(&before));
     assert_eq!(
-        call(addr, "GET", "/api/targets", &[], b"").json()["voronoi"][0]["pinned"],
+        get(addr, "/api/targets").json()["voronoi"][0]["pinned"],
         true
     );
     // Every site is now a handle; moving one moves its cell.
-    let handles = call(addr, "GET", "/api/handles", &[], b"").json();
+    let handles = get(addr, "/api/handles").json();
     let line = handles["lines"]
         .as_array()
         .unwrap()
@@ -351,7 +351,7 @@ fn pinned_voronoi_sites_draw_the_same_and_then_drag_as_handles() {
         .as_bytes(),
     );
     assert_eq!(moved.status, 200, "{}", moved.text());
-    let dragged = call(addr, "GET", "/api/svg", &[], b"").text();
+    let dragged = get(addr, "/api/svg").text();
     assert_ne!(drawing(&dragged), drawing(&after));
     // Not a Voronoi table.
     let refused = post(addr, "/api/pin", &json!({"target": "layers[0].trees[0]"}));
@@ -370,13 +370,13 @@ fn arranging_a_tree_is_written_as_its_adjustment() {
         spec.spec().adjust[0].clone()
     };
     let tree = "front.pine.tree-0";
-    let first = call(addr, "GET", "/api/svg", &[], b"").text();
+    let first = get(addr, "/api/svg").text();
     // A drag, then another: the moves add up, to a tenth of a millimetre.
     let a = adjust(json!({"id": tree, "move": [10.04, -2.0]}));
     assert_eq!((a.id.as_str(), a.offset), (tree, Some([10.0, -2.0])));
     let a = adjust(json!({"id": tree, "move": [5.0, 2.0]}));
     assert_eq!(a.offset, Some([15.0, 0.0]));
-    assert_ne!(call(addr, "GET", "/api/svg", &[], b"").text(), first);
+    assert_ne!(get(addr, "/api/svg").text(), first);
     // Turns stay within a half turn either way; scales multiply.
     let a = adjust(json!({"id": tree, "rotate": 150}));
     assert_eq!(a.rotate, Some(150.0));
@@ -391,7 +391,7 @@ fn arranging_a_tree_is_written_as_its_adjustment() {
     assert_eq!(written.matches("[[adjust]]").count(), 1, "{written}");
     // Hidden: gone from the drawing.
     adjust(json!({"id": tree, "hide": true}));
-    let svg = call(addr, "GET", "/api/svg", &[], b"").text();
+    let svg = get(addr, "/api/svg").text();
     assert!(!svg.contains(&format!("id=\"{tree}\"")));
     assert!(svg.contains("id=\"front.pine.tree-1\""));
     // Something that is not drawn cannot be arranged, and nothing changes.
@@ -408,7 +408,7 @@ fn arranging_a_tree_is_written_as_its_adjustment() {
         .contains("matches nothing drawn"));
     assert_eq!(scene(addr), before);
     // Each gesture was one step of the history.
-    assert_eq!(call(addr, "GET", "/api/state", &[], b"").json()["undo"], 7);
+    assert_eq!(get(addr, "/api/state").json()["undo"], 7);
     studio.stop();
 }
 
@@ -417,7 +417,7 @@ fn turning_the_camera_round_a_vine_writes_its_orbit() {
     let text = moyo::templates::get("vine-basic").unwrap().text;
     let (studio, _dir) = studio(text);
     let addr = studio.addr();
-    let targets = call(addr, "GET", "/api/targets", &[], b"").json();
+    let targets = get(addr, "/api/targets").json();
     assert_eq!(targets["vine"][0]["field"], "layers[0].vine[0]");
     assert_eq!(targets["vine"][0]["orbits"], true);
     let turn = |turn: f64, tilt: f64| {
@@ -430,30 +430,24 @@ fn turning_the_camera_round_a_vine_writes_its_orbit() {
         let spec = moyo::ValidSpec::parse(&scene(addr), moyo::Format::Toml).unwrap();
         spec.spec().layers[0].vine[0].camera.orbit().unwrap()
     };
-    let front = call(addr, "GET", "/api/svg", &[], b"").text();
+    let front = get(addr, "/api/svg").text();
     // From the front preset: the turns add up, to a tenth of a degree.
     let o = turn(30.04, 10.0);
     assert_eq!((o.turn, o.tilt, o.perspective), (30.0, 10.0, None));
     assert!(scene(addr).contains("camera = { turn = 30.0, tilt = 10.0 }"));
-    assert_ne!(call(addr, "GET", "/api/svg", &[], b"").text(), front);
+    assert_ne!(get(addr, "/api/svg").text(), front);
     let o = turn(170.0, 100.0);
     // Round past the back; never straight down.
     assert_eq!((o.turn, o.tilt), (-160.0, 89.0));
     // Back to the front: the drawing is the front preset's again.
     turn(160.0, -89.0);
-    assert_eq!(
-        drawing(&call(addr, "GET", "/api/svg", &[], b"").text()),
-        drawing(&front)
-    );
+    assert_eq!(drawing(&get(addr, "/api/svg").text()), drawing(&front));
     // A camera that does not turn says so, and nothing changes.
     studio.stop();
     let below = text.replace("[[layers.vine]]\n", "[[layers.vine]]\ncamera = \"below\"\n");
     let (studio, _dir) = crate::studio::studio(&below);
     let addr = studio.addr();
-    assert_eq!(
-        call(addr, "GET", "/api/targets", &[], b"").json()["vine"][0]["orbits"],
-        false
-    );
+    assert_eq!(get(addr, "/api/targets").json()["vine"][0]["orbits"], false);
     let refused = post(
         addr,
         "/api/orbit",
