@@ -162,7 +162,7 @@ pub fn run(scene: Scene, o: &PlotOptions) -> Result<Scene> {
     run_cancellable(scene, o, Cancel::never())
 }
 
-/// [`run`] that stops with [`Error::Cancelled`](crate::Error::Cancelled)
+/// [`run`] that stops with [`Error::Cancelled`]
 /// soon after `cancel` is raised: between the stages, and inside
 /// hidden-line removal (the slow one).
 pub fn run_cancellable(mut scene: Scene, o: &PlotOptions, cancel: &Cancel) -> Result<Scene> {
