@@ -464,3 +464,41 @@ fn turning_the_camera_round_a_vine_writes_its_orbit() {
     assert_eq!(refused.status, 422);
     studio.stop();
 }
+
+#[test]
+fn malformed_gestures_are_refused_and_the_studio_goes_on() {
+    let (studio, _dir) = studio(SCENE);
+    let addr = studio.addr();
+    let bodies: [&[u8]; 6] = [
+        b"",
+        b"{",
+        b"[]",
+        b"{\"target\": 5, \"at\": \"x\"}",
+        b"{\"id\": \"front.pine.tree-0\", \"move\": [1e309, 0]}",
+        b"{\"target\": \"layers[0].vine[0]\", \"turn\": \"left\"}",
+    ];
+    for path in [
+        "/api/stroke/begin",
+        "/api/stroke/extend",
+        "/api/stroke/end",
+        "/api/fill",
+        "/api/pin",
+        "/api/adjust",
+        "/api/orbit",
+    ] {
+        for body in bodies {
+            let answer = call(addr, "POST", path, &["Content-Type: application/json"], body);
+            assert!(
+                (400..500).contains(&answer.status),
+                "{path} {}: {}",
+                String::from_utf8_lossy(body),
+                answer.status
+            );
+        }
+    }
+    // Nothing changed, and the studio still answers.
+    assert_eq!(scene(addr), SCENE);
+    assert_eq!(get(addr, "/api/state").json()["undo"], 0);
+    assert_eq!(get(addr, "/api/svg").status, 200);
+    studio.stop();
+}
