@@ -204,6 +204,14 @@ impl Browser {
     }
 }
 
+impl Browser {
+    /// Fails on any error the page's own scripts met.
+    fn assert_no_page_errors(&self) {
+        let errors = self.eval("return document.body.dataset.errors || '';", &[]);
+        assert_eq!(errors, json!(""), "the page failed");
+    }
+}
+
 impl Drop for Browser {
     fn drop(&mut self) {
         if !self.session.is_empty() {
@@ -261,6 +269,7 @@ fn a_field_changed_in_the_form_redraws_the_preview_and_the_text() {
         "undo",
         "return document.getElementById('text').value.includes('count = 2   # two trees');",
     );
+    browser.assert_no_page_errors();
     studio.stop();
 }
 
@@ -307,6 +316,7 @@ fn an_invalid_edit_shows_its_error_and_keeps_the_last_good_preview() {
         &[],
     );
     assert_eq!(caret, json!(15));
+    browser.assert_no_page_errors();
     studio.stop();
 }
 
@@ -344,6 +354,7 @@ fn dragging_a_point_of_a_centre_line_moves_the_trees() {
         browser.eval("return document.getElementById('undo').disabled;", &[]),
         json!(false)
     );
+    browser.assert_no_page_errors();
     studio.stop();
 }
 
@@ -366,6 +377,7 @@ fn a_pen_switched_off_is_hidden_in_the_preview() {
     assert_eq!(browser.eval(shown, &[]).as_u64().unwrap(), all - 1);
     browser.click("#layers input");
     assert_eq!(browser.eval(shown, &[]).as_u64().unwrap(), all);
+    browser.assert_no_page_errors();
     studio.stop();
 }
 
@@ -449,6 +461,7 @@ fn a_stroke_drawn_with_a_pen_grows_the_sketch_while_the_pen_is_down() {
             json!(before)
         ),
     );
+    browser.assert_no_page_errors();
     studio.stop();
 }
 
@@ -487,6 +500,7 @@ fn a_click_in_a_zentangle_fills_the_region_under_it() {
         text.as_str().unwrap().contains("procedure = 18 }]"),
         "{text}"
     );
+    browser.assert_no_page_errors();
     studio.stop();
 }
 
@@ -516,6 +530,38 @@ fn a_tree_dragged_in_the_arrange_tool_moves_and_is_written_as_its_adjustment() {
         "the tree to move",
         &format!("const t = document.getElementById('front.pine.tree-1'); return t && !t.hasAttribute('transform') && t.getBoundingClientRect().x < {before} - 20;"),
     );
+    // Shift and a sideways drag from the middle turn it: the picture
+    // turns while the button is down, and the turn is written on release.
+    let tree = browser.element("g[id=\"front.pine.tree-1\"]");
+    let mut moves = vec![
+        json!({"type": "pointerMove", "origin": {ELEMENT: tree}, "x": 0, "y": 0}),
+        json!({"type": "pointerDown", "button": 0}),
+    ];
+    moves.extend((0..4).map(
+        |_| json!({"type": "pointerMove", "origin": "pointer", "x": 10, "y": 0, "duration": 30}),
+    ));
+    let shift = |kind: &str| json!({"type": "key", "id": "keys", "actions": [{"type": kind, "value": "\u{E008}"}]});
+    browser.command("POST", "/actions", &json!({"actions": [
+        {"type": "key", "id": "keys", "actions": [{"type": "keyDown", "value": "\u{E008}"}, {"type": "pause"}, {"type": "pause"}, {"type": "pause"}, {"type": "pause"}, {"type": "pause"}]},
+        {"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"}, "actions": moves},
+    ]}));
+    let live = browser.eval(
+        "return document.getElementById('front.pine.tree-1').getAttribute('transform');",
+        &[],
+    );
+    assert!(
+        live.as_str().is_some_and(|t| t.starts_with("matrix(")),
+        "{live}"
+    );
+    browser.point("mouse", vec![json!({"type": "pointerUp", "button": 0})]);
+    browser.command("POST", "/actions", &json!({"actions": [shift("keyUp")]}));
+    let turned = browser.wait_for(
+        "the turn",
+        "const m = document.getElementById('text').value.match(/rotate = ([-\\d.]+)/); return m && +m[1];",
+    );
+    // 40 px sideways, half a degree a pixel: clockwise.
+    assert_eq!(turned, json!(20));
+    browser.assert_no_page_errors();
     studio.stop();
 }
 
@@ -545,5 +591,6 @@ fn a_drag_in_the_turn_tool_turns_the_camera_round_a_vine() {
         "the turned vine",
         &format!("return (() => {{ {PREVIEW} }})() !== {};", json!(before)),
     );
+    browser.assert_no_page_errors();
     studio.stop();
 }

@@ -487,7 +487,13 @@ fn malformed_gestures_are_refused_and_the_studio_goes_on() {
         "/api/orbit",
     ] {
         for body in bodies {
-            let answer = call(addr, "POST", path, &["Content-Type: application/json"], body);
+            let answer = call(
+                addr,
+                "POST",
+                path,
+                &["Content-Type: application/json"],
+                body,
+            );
             assert!(
                 (400..500).contains(&answer.status),
                 "{path} {}: {}",
