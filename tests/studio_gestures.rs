@@ -327,32 +327,53 @@ fn pinned_voronoi_sites_draw_the_same_and_then_drag_as_handles() {
         get(addr, "/api/targets").json()["voronoi"][0]["pinned"],
         true
     );
-    // Every site is now a handle; moving one moves its cell.
+    // The glass is the same window in another pen: pinned with it.
+    assert_eq!(
+        spec.spec().layers[1].voronoi[0].sites.points.as_ref(),
+        Some(&points)
+    );
+    // Every site is now a handle, one for both windows, not joined by a
+    // line; moving one moves its cell in both.
     let handles = get(addr, "/api/handles").json();
-    let line = handles["lines"]
+    let lines: Vec<&Value> = handles["lines"]
         .as_array()
         .unwrap()
         .iter()
-        .find(|l| l["field"] == "layers[0].voronoi[0].sites.points")
-        .expect("the sites are handles")
-        .clone();
+        .filter(|l| l["field"].as_str().unwrap().ends_with("sites.points"))
+        .collect();
+    assert_eq!(lines.len(), 1, "{lines:?}");
+    let line = lines[0];
+    assert_eq!(line["field"], "layers[0].voronoi[0].sites.points");
+    assert_eq!(line["also"], json!(["layers[1].voronoi[0].sites.points"]));
+    assert_eq!(line["joined"], false);
     assert_eq!(line["points"].as_array().unwrap().len(), points.len());
     let [x, y] = points[0];
+    let mut changes = Vec::new();
+    for table in ["layers[0].voronoi[0]", "layers[1].voronoi[0]"] {
+        changes.push(json!({"field": format!("{table}.sites.points[0][0]"), "value": x + 3.0}));
+        changes.push(json!({"field": format!("{table}.sites.points[0][1]"), "value": y + 2.0}));
+    }
     let moved = call(
         addr,
         "PATCH",
         "/api/fields",
         &["Content-Type: application/json"],
-        json!({"changes": [
-            {"field": "layers[0].voronoi[0].sites.points[0][0]", "value": x + 3.0},
-            {"field": "layers[0].voronoi[0].sites.points[0][1]", "value": y + 2.0},
-        ]})
-        .to_string()
-        .as_bytes(),
+        json!({ "changes": changes }).to_string().as_bytes(),
     );
     assert_eq!(moved.status, 200, "{}", moved.text());
     let dragged = get(addr, "/api/svg").text();
     assert_ne!(drawing(&dragged), drawing(&after));
+    let handles = get(addr, "/api/handles").json();
+    assert_eq!(
+        handles["lines"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|l| l["field"].as_str().unwrap().ends_with("sites.points"))
+            .count(),
+        1,
+        "the two windows move as one"
+    );
     // Not a Voronoi table.
     let refused = post(addr, "/api/pin", &json!({"target": "layers[0].trees[0]"}));
     assert_eq!(refused.status, 422);

@@ -363,26 +363,36 @@ const PLACES: [&str; 8] = [
 ];
 
 /// Every line of points on the page the designer can drag, with the
-/// offset of the area inside the margins.
+/// offset of the area inside the margins. A line whose points are those
+/// of another (a pattern pinned in two tables) is not listed again: the
+/// first names it in `"also"`, so that a drag moves both. Sites are not
+/// `"joined"` by a line.
 async fn handles(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
     let value = &good.value;
-    let lines: Vec<Value> = point_lists(value)
+    let mut lines: Vec<(String, Vec<[f64; 2]>, Vec<String>)> = Vec::new();
+    for field in point_lists(value) {
+        let last = field.rsplit('.').next().unwrap_or(&field);
+        let key = last.split('[').next().unwrap_or(last);
+        if !PLACES.contains(&key) {
+            continue;
+        }
+        let Some(list) = value_at(value, &field).and_then(toml::Value::as_array) else {
+            continue;
+        };
+        let points: Vec<[f64; 2]> = list.iter().filter_map(xy).collect();
+        match lines.iter_mut().find(|(_, p, _)| *p == points) {
+            Some((_, _, also)) => also.push(field),
+            None => lines.push((field, points, Vec::new())),
+        }
+    }
+    let lines: Vec<Value> = lines
         .into_iter()
-        .filter(|field| {
-            let last = field.rsplit('.').next().unwrap_or(field);
-            let key = last.split('[').next().unwrap_or(last);
-            PLACES.contains(&key)
-        })
-        .filter_map(|field| {
-            let points: Vec<[f64; 2]> = value_at(value, &field)?
-                .as_array()?
-                .iter()
-                .filter_map(xy)
-                .collect();
-            Some(json!({"field": field, "points": points}))
+        .map(|(field, points, also)| {
+            let joined = !field.ends_with("sites.points");
+            json!({"field": field, "points": points, "also": also, "joined": joined})
         })
         .collect();
     let margins = good.spec.page().margins;

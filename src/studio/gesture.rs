@@ -254,50 +254,78 @@ struct Pin {
 
 /// Writes the sites a Voronoi table spreads as its `points`, exactly, so
 /// that the design does not change and every site becomes a handle to
-/// drag; the keys that spread them go.
+/// drag; the keys that spread them go. Tables that spread the very same
+/// sites (the same id over the same region, as a pattern drawn with two
+/// pens is) are pinned with it, so that they stay one pattern: their
+/// handles are one (see `GET /api/handles`).
 async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let found = table_index(&pin.target, "voronoi")
-        .and_then(|(l, t)| Some((l, t, good.spec.spec().layers.get(l)?.voronoi.get(t)?)));
-    let Some((l, t, table)) = found else {
+    let Some((l, t)) = table_index(&pin.target, "voronoi").filter(|&(l, t)| {
+        good.spec
+            .spec()
+            .layers
+            .get(l)
+            .is_some_and(|x| x.voronoi.len() > t)
+    }) else {
         return failure(&Error::invalid(
             &pin.target,
             "is not a Voronoi table of the design",
         ));
     };
+    // Each table's sites; those equal to the target's are pinned.
     let work = {
         let good = std::sync::Arc::clone(&good);
         tokio::task::spawn_blocking(move || {
-            crate::project::voronoi_sites(&good.spec, &good.library, l, t)
+            let spec = good.spec.spec();
+            let points = crate::project::voronoi_sites(&good.spec, &good.library, l, t)?;
+            let mut same = Vec::new();
+            for (ol, layer) in spec.layers.iter().enumerate() {
+                for (ot, other) in layer.voronoi.iter().enumerate() {
+                    let twin = (ol, ot) == (l, t)
+                        || (other.id.is_some()
+                            && other.id == spec.layers[l].voronoi[t].id
+                            && other.sites.points.is_none()
+                            && crate::project::voronoi_sites(&good.spec, &good.library, ol, ot)
+                                .is_ok_and(|p| p == points));
+                    if twin {
+                        same.push((
+                            format!("layers[{ol}].voronoi[{ot}]"),
+                            other.pinned(points.clone()).sites,
+                        ));
+                    }
+                }
+            }
+            Ok::<_, Error>((points, same))
         })
     };
-    let points = match work.await {
-        Ok(Ok(points)) => points,
+    let (points, same) = match work.await {
+        Ok(Ok(found)) => found,
         Ok(Err(e)) => return failure(&e),
         Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
     };
-    let sites = format!("{}.sites", pin.target);
-    let pinned = table.pinned(points.clone()).sites;
     let text = Edit::parse(&good.text).and_then(|mut edit| {
-        // The sites' keys as they will be: each kept, set or removed.
-        let now =
-            toml::Value::try_from(&pinned).map_err(|e| Error::invalid(&sites, e.to_string()))?;
-        for key in [
-            "distribution",
-            "count",
-            "spacing",
-            "jitter",
-            "image",
-            "density",
-        ] {
-            match now.get(key) {
-                Some(v) => edit.set(&format!("{sites}.{key}"), toml_value(v)?)?,
-                None => edit.remove(&format!("{sites}.{key}"))?,
+        for (table, pinned) in &same {
+            let sites = format!("{table}.sites");
+            // The sites' keys as they will be: each kept, set or removed.
+            let now =
+                toml::Value::try_from(pinned).map_err(|e| Error::invalid(&sites, e.to_string()))?;
+            for key in [
+                "distribution",
+                "count",
+                "spacing",
+                "jitter",
+                "image",
+                "density",
+            ] {
+                match now.get(key) {
+                    Some(v) => edit.set(&format!("{sites}.{key}"), toml_value(v)?)?,
+                    None => edit.remove(&format!("{sites}.{key}"))?,
+                }
             }
+            edit.set(&format!("{sites}.points"), point_list(&points))?;
         }
-        edit.set(&format!("{sites}.points"), point_list(&points))?;
         Ok(edit.text())
     });
     write(&app, text).await
