@@ -395,12 +395,13 @@ fn a_stroke_drawn_with_a_pen_grows_the_sketch_while_the_pen_is_down() {
         "return document.getElementById('pen-target').value === 'layers[0].lsystem[0]';",
     );
     browser.click("input[name=tool][value=pen]");
-    let svg = browser.element("#preview svg");
     let steps =
         "const g = document.getElementById('studio-sketch'); return g ? +g.dataset.steps : -1;";
     // The pen goes down low on the page and moves up it; the action
-    // ends with the pen still down.
+    // ends with the pen still down. (The preview is found again each
+    // time: a render replaces it.)
     let moves = |from: i64, count: usize| -> Vec<Value> {
+        let svg = browser.element("#preview svg");
         let mut list = Vec::new();
         for i in 0..count {
             let k = from + i as i64;
@@ -460,6 +461,29 @@ fn a_stroke_drawn_with_a_pen_grows_the_sketch_while_the_pen_is_down() {
             "return !document.getElementById('studio-sketch') && (() => {{ {PREVIEW} }})() !== {};",
             json!(before)
         ),
+    );
+    // A stroke for a new sketch makes a new table, and the choice stays
+    // for the next stroke.
+    browser.eval(
+        "document.getElementById('pen-target').value = 'new:0';",
+        &[],
+    );
+    let mut second = moves(0, 1);
+    second.push(json!({"type": "pointerDown", "button": 0}));
+    second.extend(moves(1, 12));
+    second.push(json!({"type": "pointerUp", "button": 0}));
+    pen(second);
+    browser.wait_for(
+        "a new sketch",
+        "return document.getElementById('text').value.includes('id = \"sketch-1\"');",
+    );
+    browser.wait_for(
+        "the targets to be read again",
+        "return [...document.getElementById('pen-target').options].some(o => o.textContent.includes('sketch-1'));",
+    );
+    assert_eq!(
+        browser.eval("return document.getElementById('pen-target').value;", &[]),
+        json!("new:0")
     );
     browser.assert_no_page_errors();
     studio.stop();
