@@ -35,8 +35,10 @@ pub(super) fn routes() -> Router<App> {
         .route("/api/orbit", post(orbit))
 }
 
-/// What the gestures can work on in the last good design: the layers
-/// (a new sketch goes in one), the sketch tables, the zentangle fills.
+/// What the gestures can work on in the last good design: the layers (a
+/// new sketch goes in one), the sketch tables, the zentangle fills, the
+/// Voronoi tables (pinned or not) and the vines (whether their camera
+/// turns).
 async fn targets(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
@@ -95,8 +97,7 @@ async fn targets(State(app): State<App>) -> Response {
 struct Begin {
     /// The sketch table's field path, or none for a new sketch.
     target: Option<String>,
-    /// For a new sketch: the layer's index (default: the frontmost,
-    /// last).
+    /// For a new sketch: the layer's index (default: the last).
     layer: Option<usize>,
     /// The first point, scene mm.
     at: [f64; 2],
