@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""Synthetic plotter SVGs for bench/vs_vpype.sh (standard library only).
+"""Synthetic plotter SVGs for bench/vs_vpype.sh and bench/limits.sh
+(standard library only).
 
     gen_paths.py random N OUT.svg   N short cubic Bézier paths scattered on A3
     gen_paths.py chains N OUT.svg   N short pieces forming chains whose pieces
                                     share endpoints, some pieces reversed and
                                     shuffled (what line merging is for)
+    gen_paths.py lines N OUT.svg K  N random walks of K line segments each
+                                    (the heaviest paths per element)
 
 Deterministic: the same arguments give the same file.
 """
@@ -68,12 +71,27 @@ def chains(n, out, rng):
         cubic(out, *p)
 
 
+def lines(n, out, rng, segments):
+    for _ in range(n):
+        x, y = rng.uniform(10, W - 10), rng.uniform(10, H - 10)
+        steps = []
+        for _ in range(segments):
+            x = min(max(x + rng.uniform(-2, 2), 0.0), W)
+            y = min(max(y + rng.uniform(-2, 2), 0.0), H)
+            steps.append("%.2f %.2f" % (x, y))
+        out.write('<path d="M %s L %s"/>\n' % (steps[0], " ".join(steps[1:])))
+
+
 def main():
     kind, n, path = sys.argv[1], int(sys.argv[2]), sys.argv[3]
     rng = random.Random(20261121)
     with open(path, "w") as out:
         header(out)
-        {"random": random_paths, "chains": chains}[kind](n, out, rng)
+        if kind == "lines":
+            # K + 1 points make K segments: the move is the first point.
+            lines(n, out, rng, int(sys.argv[4]) + 1)
+        else:
+            {"random": random_paths, "chains": chains}[kind](n, out, rng)
         out.write("</g>\n</svg>\n")
 
 

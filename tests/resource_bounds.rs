@@ -35,27 +35,66 @@ fn a_file_that_never_ends_is_refused_at_256_mib() {
     assert!(entries(dir.path()).is_empty());
 }
 
+/// `moyo plot NAME` on `text` (with `args`) fails saying `message` and
+/// leaves only its input in the folder.
+fn plot_is_refused(name: &str, text: &str, args: &[&str], message: &str) {
+    let dir = tempdir();
+    fs::write(dir.path().join(name), text).unwrap();
+    moyo(&dir)
+        .arg("plot")
+        .arg(name)
+        .args(args)
+        .args(["-o", "out.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(format!("{name}: {message}")));
+    assert_eq!(entries(dir.path()), [name.to_string()].into());
+}
+
 #[test]
 fn groups_nested_past_1024_are_refused_with_the_limit() {
-    let dir = tempdir();
     let depth = 1100;
     let body = format!(
         "{}<path d=\"M0 0 L10 10\" stroke=\"black\"/>{}",
         "<g>".repeat(depth),
         "</g>".repeat(depth)
     );
-    fs::write(dir.path().join("deep.svg"), svg(&body)).unwrap();
-    moyo(&dir)
-        .args(["plot", "deep.svg", "-o", "out.svg"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("nested more than 1,024 deep"));
-    assert_eq!(entries(dir.path()), ["deep.svg".to_string()].into());
+    plot_is_refused(
+        "deep.svg",
+        &svg(&body),
+        &[],
+        "the document has more than 1,000,000 elements, or elements nested more than 1,024 deep",
+    );
+}
+
+#[test]
+fn more_than_a_million_elements_are_refused_with_the_limit() {
+    plot_is_refused(
+        "many.svg",
+        &svg(&"<g/>".repeat(1_000_001)),
+        &["--merge", "--sort"],
+        "the document has more than 1,000,000 elements",
+    );
+}
+
+#[test]
+fn more_than_ten_million_segments_are_refused_before_the_plot() {
+    // One path of 10,000,002 short lines back and forth: 25 MB of text,
+    // well within the file limit.
+    let path = format!(
+        r#"<path stroke="black" d="M1 1{}"/>"#,
+        "h1h-1".repeat(5_000_001)
+    );
+    plot_is_refused(
+        "long.svg",
+        &svg(&path),
+        &[],
+        "svg: the paths hold more than 10,000,000 segments in all",
+    );
 }
 
 #[test]
 fn an_entity_bomb_is_refused() {
-    let dir = tempdir();
     let mut dtd = String::from("<!DOCTYPE svg [<!ENTITY a0 \"lol\">");
     for i in 1..10 {
         let prev = format!("&a{};", i - 1);
@@ -64,13 +103,12 @@ fn an_entity_bomb_is_refused() {
     dtd.push(']');
     dtd.push('>');
     let text = format!("{dtd}{}", svg("<text>&a9;</text>"));
-    fs::write(dir.path().join("bomb.svg"), text).unwrap();
-    moyo(&dir)
-        .args(["plot", "bomb.svg", "-o", "out.svg"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("bomb.svg"));
-    assert_eq!(entries(dir.path()), ["bomb.svg".to_string()].into());
+    plot_is_refused(
+        "bomb.svg",
+        &text,
+        &[],
+        "1:63: malformed SVG (not well-formed XML): a possible entity reference loop",
+    );
 }
 
 #[test]

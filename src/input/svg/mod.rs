@@ -219,6 +219,8 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
         },
         ..usvg::Options::default()
     };
+    let mm_per_px = MM_PER_INCH / options.px_per_inch;
+    let exact_size = page::exact_size(doc.root_element(), mm_per_px);
     let tree = match &source.rewritten {
         Some(rewritten) => {
             let doc = parse_xml(rewritten)?;
@@ -227,14 +229,14 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
         None => usvg::Tree::from_xmltree(&doc, &usvg_options),
     }
     .map_err(usvg_error)?;
+    // Each stage's copy of the drawing is let go as soon as the next one
+    // is built: on a million-path file the XML tree and usvg's tree are
+    // each larger than the paths themselves.
+    drop(doc);
 
-    let mm_per_px = MM_PER_INCH / options.px_per_inch;
-    let page = page::page_of(
-        &tree,
-        page::exact_size(doc.root_element(), mm_per_px),
-        mm_per_px,
-    )?;
+    let page = page::page_of(&tree, exact_size, mm_per_px)?;
     let walked = walk::walk(&tree, Affine::scale(mm_per_px), &source.layers)?;
+    drop(tree);
 
     let mut warnings = Vec::new();
     let mut plural = |n: usize, one: &str, many: &str, rest: &str| {

@@ -5,7 +5,10 @@
 use std::collections::HashMap;
 
 use kurbo::{Affine, BezPath, Point};
-use resvg::usvg::{self, tiny_skia_path::PathSegment};
+use resvg::usvg::{
+    self,
+    tiny_skia_path::{PathSegment, PathVerb},
+};
 
 use super::page::round_size;
 use super::scan::LayerSource;
@@ -47,7 +50,7 @@ pub(super) struct Walked {
 /// The most segments (lines and curves) an imported SVG may hold: the
 /// default segment budget of a scene, a thousand hours of plotting. The
 /// heaviest SVG within it and the element limit (a million paths of ten
-/// segments) peaks at about 2.1 GB through `plot --merge --sort` (see
+/// segments) peaks at about 1.9 GB through `plot --merge --sort` (see
 /// `RELIABILITY.md`).
 pub const MAX_IMPORT_SEGMENTS: usize = 10_000_000;
 
@@ -135,7 +138,10 @@ impl Walker<'_> {
         }
         // Checked before the path is built: the file size alone lets a
         // few very long paths hold far more segments than a plot needs.
-        self.segments += p.data().len();
+        // Counted as the scene's budget counts them: every element but a
+        // move.
+        let verbs = p.data().verbs();
+        self.segments += verbs.iter().filter(|v| **v != PathVerb::Move).count();
         if self.segments > self.max_segments {
             return Err(Error::invalid(
                 "svg",
@@ -146,7 +152,9 @@ impl Walker<'_> {
             ));
         }
         let to_page = self.to_mm * affine(p.abs_transform());
-        let mut path = BezPath::new();
+        // Sized once: a vector grown by pushes holds room for four
+        // elements, twice what the typical two-element path needs.
+        let mut path = BezPath::with_capacity(verbs.len());
         let map = |q: usvg::tiny_skia_path::Point| -> Result<Point> {
             let pt = to_page * Point::new(f64::from(q.x), f64::from(q.y));
             if pt.x.abs() <= MAX_COORD && pt.y.abs() <= MAX_COORD {
@@ -286,11 +294,11 @@ mod tests {
         let text = doc(r#"<path d="M0 0 L1 1 L2 0 Z" stroke="black"/>
                           <path d="M5 5 h1 v1 h-1" stroke="black"/>"#);
         let tree = resvg::usvg::Tree::from_str(&text, &resvg::usvg::Options::default()).unwrap();
-        // Four and four segments, moves and closes counted.
-        let walked = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 8).unwrap();
+        // Three and three segments: a close is one, a move is not.
+        let walked = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 6).unwrap();
         assert_eq!(walked.drawn.len(), 2);
-        let e = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 7).unwrap_err();
-        assert!(e.to_string().contains("more than 7 segments"), "{e}");
+        let e = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 5).unwrap_err();
+        assert!(e.to_string().contains("more than 5 segments"), "{e}");
     }
 
     #[test]
