@@ -75,7 +75,8 @@ def lines(n, out, rng, segments):
     for _ in range(n):
         x, y = rng.uniform(10, W - 10), rng.uniform(10, H - 10)
         steps = []
-        for _ in range(segments):
+        # segments + 1 points: the first is where the pen moves to.
+        for _ in range(segments + 1):
             x = min(max(x + rng.uniform(-2, 2), 0.0), W)
             y = min(max(y + rng.uniform(-2, 2), 0.0), H)
             steps.append("%.2f %.2f" % (x, y))
@@ -88,8 +89,7 @@ def main():
     with open(path, "w") as out:
         header(out)
         if kind == "lines":
-            # K + 1 points make K segments: the move is the first point.
-            lines(n, out, rng, int(sys.argv[4]) + 1)
+            lines(n, out, rng, int(sys.argv[4]))
         else:
             {"random": random_paths, "chains": chains}[kind](n, out, rng)
         out.write("</g>\n</svg>\n")
