@@ -26,7 +26,10 @@ use crate::error::{Error, Result};
 use crate::input::{decode_image, import_svg, ImportOptions};
 use crate::lsystem::LSystem;
 use crate::output::to_obj;
-use crate::plot::{HatchOptions, MergeOptions, OccludeOptions, PlotOptions, SortOptions};
+use crate::plot::{
+    DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, OccludeOptions, PlotOptions,
+    SortOptions,
+};
 use crate::project::{self, plot_scene, PlotFormat, PlotJob};
 use crate::rng::Seed;
 use crate::scene::embedded_description;
@@ -175,7 +178,9 @@ fn svg(text: &str) -> Result<()> {
     let stages = PlotOptions {
         occlude: Some(OccludeOptions::default()),
         hatch: Some(HatchOptions::default()),
+        dedupe: Some(DedupeOptions::default()),
         merge: Some(MergeOptions::default()),
+        debris: Some(DebrisOptions::default()),
         sort: Some(SortOptions::default()),
         ..PlotOptions::default()
     };

@@ -7,7 +7,8 @@
 //!
 //! ```text
 //! scene description (spec) → motif generators (motif) → scene graph (scene)
-//!                          → outputs (output: SVG, PNG preview, path dump)
+//!   → plot stages (plot: hatching, hidden lines, the pen stage)
+//!   → outputs (output: SVG, PNG preview, G-code, HPGL, path dump)
 //! ```
 //!
 //! [`project`] strings the stages together; its entry points are here at
@@ -40,9 +41,13 @@
 //! // The same description and seed always give the same bytes.
 //! assert_eq!(moyo::render(&spec)?.svg, rendered.svg);
 //!
-//! // One line per path, for snapshot tests of your own designs.
+//! // One line per path, for snapshot tests of your own designs: what the
+//! // pen draws (one layer per pen), in the order it draws it, each path
+//! // with its id.
 //! let dump = rendered.dump(2);
-//! assert!(dump.starts_with("front\tfront.trees-0.tree-0.limb-0\tM "));
+//! assert!(dump
+//!     .lines()
+//!     .all(|l| l.starts_with("pen-1.layer\tfront.trees-0.tree-")));
 //! # Ok::<(), moyo::Error>(())
 //! ```
 //!

@@ -423,10 +423,40 @@ pub fn render_cancellable(
     progress: &mut dyn FnMut(Progress),
     cancel: &Cancel,
 ) -> Result<Rendered> {
+    render_through(spec, library, progress, cancel, &spec.plot.options())
+}
+
+/// [`render_cancellable`] without the stages that make one flat layer per
+/// pen (the pen stage among them: [`PlotOptions::keeping_groups`]): the
+/// scene keeps the description's layers, every table's group and every
+/// id, so that each part of the drawing can be found and pointed at, as the
+/// studio does. Its SVG is a preview of the design, not what a pen should
+/// draw: [`Rendered::pen_ready`] makes that.
+///
+/// # Errors
+/// As [`render_cancellable`].
+pub fn render_for_editing(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
+) -> Result<Rendered> {
+    let stages = spec.plot.options().keeping_groups();
+    render_through(spec, library, progress, cancel, &stages)
+}
+
+/// Builds the scene and runs `stages` on it.
+fn render_through(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
+    stages: &PlotOptions,
+) -> Result<Rendered> {
     let (scene, notes, models) =
         build(spec, library, progress, cancel).map_err(|e| spec.locate(e))?;
     cancel.check()?;
-    let scene = plot::run_cancellable(scene, &spec.plot, cancel)?;
+    let scene = plot::run_cancellable(scene, stages, cancel)?;
     cancel.check()?;
     let options = svg_options(spec);
     let svg = to_svg(&scene, &options);
@@ -440,6 +470,31 @@ pub fn render_cancellable(
 }
 
 impl Rendered {
+    /// What [`render_cancellable`] makes of `spec`, from this render of
+    /// it by [`render_for_editing`]: the stages that render left out (the
+    /// pen stage) run on its scene.
+    ///
+    /// # Errors
+    /// As [`plot::run`].
+    pub fn pen_ready(&self, spec: &ValidSpec) -> Result<Rendered> {
+        let all = spec.plot.options();
+        let rest = PlotOptions {
+            transform: None,
+            occlude: None,
+            hatch: None,
+            ..all
+        };
+        let scene = plot::run(self.scene.clone(), &rest)?;
+        let svg = to_svg(&scene, &self.options);
+        Ok(Rendered {
+            scene,
+            svg,
+            notes: self.notes.clone(),
+            models: self.models.clone(),
+            options: self.options,
+        })
+    }
+
     /// The colour preview SVG: the plot's pen layers as they are in
     /// [`Rendered::svg`], plus the preview colour of partly hidden shapes
     /// and the layers that are not plotted.

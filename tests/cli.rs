@@ -255,7 +255,10 @@ fn render_toml_scene_file() {
     assert!(!svg.contains("tree-2"), "count = 2 makes tree-0 and tree-1");
     let dump = read_text(&dir.path().join("small.dump"));
     assert_eq!(dump.lines().count(), path_count(&svg));
-    assert!(dump.lines().all(|l| l.starts_with("only\tonly.row.tree-")));
+    // One pen's layer; every path keeps its id.
+    assert!(dump
+        .lines()
+        .all(|l| l.starts_with("pen-3.layer\tonly.row.tree-")));
 }
 
 #[test]

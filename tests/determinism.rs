@@ -19,7 +19,7 @@ use moyo::templates;
 /// The CLI tests cover determinism of the full pipeline.
 fn template(name: &str) -> SceneSpec {
     let mut spec = templates::get(name).unwrap().spec().unwrap().into_inner();
-    spec.plot = Default::default();
+    spec.plot = moyo::spec::PlotSpec::none();
     spec
 }
 

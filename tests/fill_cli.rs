@@ -41,9 +41,13 @@ fn pen_layer(svg: &str, n: u32) -> &str {
         .find(&format!("<g id=\"pen-{n}\""))
         .unwrap_or_else(|| panic!("no pen {n} in {svg}"));
     let rest = &svg[start..];
-    let end = rest[1..]
-        .find("<g id=\"pen-")
-        .map_or_else(|| rest.rfind("</svg>").unwrap(), |i| i + 1);
+    // The next pen's Inkscape layer (`pen-N`, not the `pen-N.layer` group
+    // inside this one).
+    let end = rest
+        .match_indices("<g id=\"pen-")
+        .skip(1)
+        .find(|(i, m)| !rest[i + m.len()..].split('"').next().unwrap().contains('.'))
+        .map_or_else(|| rest.rfind("</svg>").unwrap(), |(i, _)| i);
     &rest[..end]
 }
 
@@ -73,7 +77,16 @@ fn every_pattern_adds_a_layer_and_keeps_the_input() {
             &["--spacing", "6"]
         };
         moyo(&dir)
-            .args(["fill", "frame.svg", "-o", &out, "--pattern", pattern])
+            // As built, to see the input come back byte for byte.
+            .args([
+                "fill",
+                "frame.svg",
+                "-o",
+                &out,
+                "--pattern",
+                pattern,
+                "--no-pen-stage",
+            ])
             .args(size)
             .assert()
             .success()

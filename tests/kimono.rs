@@ -56,9 +56,16 @@ fn build(spec: &ValidSpec) -> Scene {
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// The scene after the plot stages the description asks for.
+/// The scene after the plot stages the description asks for, but for the
+/// pen stage: the description's layers, groups and ids kept, as these
+/// tests find parts of the drawing by them.
 fn render(spec: &ValidSpec) -> Rendered {
-    project::render_with_progress(spec, &library(spec), &mut |_| {})
+    render_with(spec, &library(spec))
+}
+
+/// [`render`] with the library given.
+fn render_with(spec: &ValidSpec, library: &Library) -> Rendered {
+    project::render_for_editing(spec, library, &mut |_| {}, &project::Cancel::default())
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -544,7 +551,8 @@ fn no_back_layer_stroke_shows_inside_a_front_motif() {
         "no user motif lies over the back layer"
     );
 
-    let plotted = moyo::plot::run(unplotted, &spec.plot).unwrap_or_else(|e| panic!("{e}"));
+    let plotted =
+        moyo::plot::run(unplotted, &spec.plot.options()).unwrap_or_else(|e| panic!("{e}"));
     let after = back_points_inside(&plotted, &outlines);
     assert!(
         after.is_empty(),
@@ -1049,8 +1057,7 @@ fn hiding_a_tree_also_hides_its_adjusted_flowers() {
         "{ADJUSTED}\n[[adjust]]\nid = \"front.plum.tree-1\"\nhide = true\n\
          [[adjust]]\nid = \"{FLOWER}\"\nmove = [1, 1]\n"
     ));
-    let rendered = project::render_with_progress(&spec, &library(&spec), &mut |_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    let rendered = render(&spec);
     assert!(!by_id(&rendered.scene)
         .keys()
         .any(|id| id.starts_with("front.plum.tree-1.")));
@@ -1218,8 +1225,7 @@ fn embedded_description_reparses_to_the_rendered_description() {
     fs::create_dir_all(dir.path().join("motifs")).unwrap();
     fs::write(dir.path().join("motifs/fan.svg"), fixture("fan.svg")).unwrap();
     let lib = project::load_motifs(&spec, dir.path()).unwrap_or_else(|e| panic!("{e}"));
-    let rendered =
-        project::render_with_progress(&spec, &lib, &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));
+    let rendered = render_with(&spec, &lib);
     let text = moyo::embedded_description(&rendered.svg).expect("a description");
     assert_eq!(parse(&text), spec);
 }
@@ -1567,8 +1573,7 @@ fn every_composite_and_pattern_renders_with_tiles_inside_the_mask() {
         for pattern in 1..=5u8 {
             let what = format!("composite {composite}, pattern {pattern}");
             let spec = parse(&background_scene(composite, pattern, true));
-            let rendered = project::render_with_progress(&spec, &library(&spec), &mut |_| {})
-                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let rendered = render(&spec);
             let (mask, tiles) = mask_and_tiles(&rendered.scene);
             let region = Region::new(mask.clone(), FillRule::NonZero).unwrap();
             assert!(
@@ -1640,7 +1645,7 @@ fn composite_2_grows_nothing_outside_the_circles_when_a_root_lies_outside() {
 #[test]
 fn solid_pattern_without_paint_is_filled_grey_and_hatched() {
     let spec = parse(&background_scene(1, 1, true));
-    assert!(spec.plot.is_empty() && spec.plot.hatch.is_none());
+    assert!(spec.plot.is_default() && spec.plot.hatch.is_none());
     let unplotted = build(&spec);
     let mut style = None;
     unplotted.visit_paths(|_, p, _| {

@@ -44,7 +44,10 @@ fn stats_json(dir: &TempDir, file: &str) -> serde_json::Value {
 fn pen_numbers(svg: &str) -> Vec<f64> {
     svg.split("<g id=\"pen-")
         .skip(1)
-        .map(|rest| rest[..rest.find('"').unwrap()].parse().unwrap())
+        .map(|rest| &rest[..rest.find('"').unwrap()])
+        // `pen-N.layer` is the pen's group inside its Inkscape layer.
+        .filter(|id| !id.contains('.'))
+        .map(|id| id.parse().unwrap())
         .collect()
 }
 
@@ -76,7 +79,18 @@ fn stats_json_has_totals_and_layers() {
 
 #[test]
 fn merge_and_sort_keep_ink_and_shorten_travel() {
-    let dir = with_default_design();
+    let dir = tempfile::tempdir().unwrap();
+    // The default design in the order its generators drew it.
+    let text = moyo::templates::get(moyo::templates::DEFAULT).unwrap().text;
+    fs::write(
+        dir.path().join("hem.toml"),
+        format!("{text}\n[plot]\nmerge = false\nsort = false\n"),
+    )
+    .unwrap();
+    moyo(&dir)
+        .args(["render", "hem.toml", "-o", "hem.svg"])
+        .assert()
+        .success();
     moyo(&dir)
         .args(["plot", "hem.svg", "--merge", "--sort", "-o", "sorted.svg"])
         .assert()
@@ -85,7 +99,107 @@ fn merge_and_sort_keep_ink_and_shorten_travel() {
     let after = stats_json(&dir, "sorted.svg");
     let ink = |v: &serde_json::Value| number(v, "pen_down_mm");
     assert!((ink(&before) - ink(&after)).abs() < 0.01 * ink(&before));
-    assert!(number(&after, "pen_up_mm") < number(&before, "pen_up_mm"));
+    assert!(number(&after, "pen_up_mm") < 0.5 * number(&before, "pen_up_mm"));
+    // What a render writes is sorted already: sorting it again gains at
+    // most a few percent.
+    moyo(&dir)
+        .args(["render", "-o", "default.svg"])
+        .assert()
+        .success();
+    moyo(&dir)
+        .args([
+            "plot",
+            "default.svg",
+            "--merge",
+            "--sort",
+            "-o",
+            "again.svg",
+        ])
+        .assert()
+        .success();
+    let rendered = number(&stats_json(&dir, "default.svg"), "pen_up_mm");
+    let again = number(&stats_json(&dir, "again.svg"), "pen_up_mm");
+    assert!(rendered <= 1.05 * again, "{rendered} vs {again}");
+}
+
+/// An SVG drawn carelessly: a line drawn twice, another lying on half of
+/// it, a sliver touching it, and an isolated dot.
+const CARELESS: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="50mm" viewBox="0 0 100 50">
+  <path id="a" d="M 10 10 L 90 10" stroke="black" stroke-width="0.3" fill="none"/>
+  <path id="b" d="M 10 10 L 90 10" stroke="black" stroke-width="0.3" fill="none"/>
+  <path id="c" d="M 50 10.02 L 90 10.02 L 90 40" stroke="black" stroke-width="0.3" fill="none"/>
+  <path id="sliver" d="M 30 10.1 L 30.1 10.2" stroke="black" stroke-width="0.3" fill="none"/>
+  <path id="dot" d="M 30 30 L 30 30" stroke="black" stroke-width="0.3" fill="none"/>
+</svg>"#;
+
+#[test]
+fn stats_show_doubled_line_work_and_debris_that_dedupe_and_debris_take_out() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(dir.path().join("careless.svg"), CARELESS).unwrap();
+    let before = stats_json(&dir, "careless.svg");
+    // b on a (80 mm), c's first 40 mm on a: 120 mm drawn twice.
+    assert!(
+        (number(&before, "doubled_mm") - 120.0).abs() < 0.5,
+        "{before}"
+    );
+    assert_eq!(number(&before, "debris"), 1.0, "the sliver, not the dot");
+    let table = moyo(&dir)
+        .args(["stats", "careless.svg"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let table = String::from_utf8(table).unwrap();
+    assert!(
+        table
+            .lines()
+            .next()
+            .unwrap()
+            .ends_with("doubled mm  debris"),
+        "{table}"
+    );
+
+    moyo(&dir)
+        .args([
+            "plot",
+            "careless.svg",
+            "-o",
+            "clean.svg",
+            "--dedupe",
+            "--debris",
+        ])
+        .assert()
+        .success();
+    let after = stats_json(&dir, "clean.svg");
+    assert!(number(&after, "doubled_mm") < 0.01, "{after}");
+    assert_eq!(number(&after, "debris"), 0.0);
+    // Ink: a once, the 30 mm of c that do not lie on it, and the dot.
+    assert!(
+        (number(&after, "pen_down_mm") - 110.0).abs() < 0.1,
+        "{after}"
+    );
+    let clean = fs::read_to_string(dir.path().join("clean.svg")).unwrap();
+    assert!(clean.contains("id=\"dot\""), "the isolated dot stays");
+    assert!(!clean.contains("id=\"sliver\"") && !clean.contains("id=\"b\""));
+    // A tolerance in mm: 0.01 mm does not see c as lying on a (only b
+    // goes; the sliver stays without --debris).
+    moyo(&dir)
+        .args([
+            "plot",
+            "careless.svg",
+            "-o",
+            "tight.svg",
+            "--dedupe",
+            "0.01",
+        ])
+        .assert()
+        .success();
+    let tight = stats_json(&dir, "tight.svg");
+    assert!(
+        (number(&tight, "pen_down_mm") - 150.14).abs() < 0.05,
+        "{tight}"
+    );
 }
 
 #[test]
@@ -162,6 +276,10 @@ fn bad_stage_options_are_refused() {
         &["--multipass", "0"],
         &["--merge", "-1"],
         &["--speed-down", "0"],
+        &["--dedupe=-0.1"],
+        &["--dedupe", "NaN"],
+        &["--dedupe", "400"],
+        &["--debris=-1"],
     ] {
         moyo(&dir)
             .args(["plot", "hem.svg", "-o", "out.svg"])

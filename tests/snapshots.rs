@@ -8,7 +8,7 @@
 use kurbo::{PathEl, Rect, Shape};
 use moyo::project::{self, Rendered};
 use moyo::spec::{Format, SceneSpec};
-use moyo::{templates, Layer, Node, Scene, StyledPath};
+use moyo::{templates, Layer, Scene};
 
 /// Decimals of the per-path snapshots: 0.01 mm, enough to see any real
 /// change, coarse enough that float noise (last-bit differences between
@@ -74,9 +74,13 @@ jitter_length = 0
     )
 }
 
+/// The drawing of a small scene as its generators made it, without the
+/// pen stage: these dumps are about the geometry of motifs.
 fn render(text: &str) -> Rendered {
     let spec = SceneSpec::parse(text, Format::Toml).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    project::render(&spec).unwrap_or_else(|e| panic!("{e}"))
+    let library = moyo::motif::Library::new();
+    project::render_for_editing(&spec, &library, &mut |_| {}, &Default::default())
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Structural checks that hold whatever the exact numbers: every line is
@@ -247,45 +251,41 @@ fn summary(scene: &Scene) -> String {
     let mut drawn = Part::default();
     for layer in &scene.layers {
         let mut whole = Part::default();
-        let mut sets: Vec<(String, Part)> = Vec::new();
-        let outer = page * layer.content.transform;
-        let mut add = |part: Option<&mut Part>, p: &StyledPath, t: kurbo::Affine| {
+        // A set is a table's drawing: the first two parts of a path's id
+        // (`front.camellia`), wherever the plot stages put the path.
+        let mut sets: std::collections::BTreeMap<String, Part> = Default::default();
+        layer.content.visit_paths(page, &mut |p, t| {
             let line = lines.next().expect("one dump line per path");
             let path = t * p.path.clone();
-            for part in [Some(&mut whole), Some(&mut all), part]
-                .into_iter()
-                .flatten()
-            {
+            let set = p.id.split('.').take(2).collect::<Vec<_>>().join(".");
+            let set = sets.entry(set).or_default();
+            for part in [&mut whole, &mut all, set] {
                 part.add(&path, line);
             }
             if layer.is_plotted() && !p.style.fill_only {
                 drawn.add(&path, line);
             }
-        };
-        for child in &layer.content.children {
-            match child {
-                Node::Group(g) => {
-                    let mut set = Part::default();
-                    g.visit_paths(outer, &mut |p, t| add(Some(&mut set), p, t));
-                    sets.push((format!("  {}", g.id), set));
-                }
-                Node::Path(p) => add(None, p, outer),
-            }
-        }
+        });
         let plotted = if layer.is_plotted() {
             ""
         } else {
             " (not plotted)"
         };
         rows.push((format!("{} pen {}{plotted}", layer.id, layer.pen), whole));
-        rows.extend(sets);
+        rows.extend(sets.into_iter().map(|(id, part)| (format!("  {id}"), part)));
     }
+    let figures = moyo::plot::stats(scene, &moyo::plot::Speeds::DEFAULT);
     let mut out = format!(
-        "{} plotted paths, {} mm pen-down; every path within {} mm; dump hash {:016x}\n\n",
+        "{} plotted paths, {} mm pen-down; every path within {} mm; dump hash {:016x}\n\
+         pen: {} mm pen-up, {} mm doubled, {} debris, {} pen lifts\n\n",
         drawn.paths,
         mm(drawn.length),
         all.bounds_text(),
         all.hash,
+        mm(figures.pen_up_mm),
+        mm(figures.doubled_mm),
+        figures.debris,
+        figures.pen_lifts,
     );
     let width = rows
         .iter()

@@ -194,7 +194,15 @@ fn the_description_goes_in_and_the_svg_comes_out() {
     let spec = moyo::ValidSpec::parse(&changed, moyo::Format::Toml).unwrap();
     let cli = moyo::render(&spec).unwrap();
     assert_eq!(put.text(), cli.svg);
-    // The preview view is the colour preview.
+    // The preview view is the colour preview of the design as drawn, its
+    // layers and groups kept for the page to point at (no pen stage).
+    let editing = moyo::project::render_for_editing(
+        &spec,
+        &moyo::motif::Library::new(),
+        &mut |_| {},
+        &moyo::project::Cancel::default(),
+    )
+    .unwrap();
     let preview = call(
         addr,
         "PUT",
@@ -202,7 +210,7 @@ fn the_description_goes_in_and_the_svg_comes_out() {
         &[],
         changed.as_bytes(),
     );
-    assert_eq!(preview.text(), cli.preview_svg());
+    assert_eq!(preview.text(), editing.preview_svg());
     studio.stop();
 }
 

@@ -13,6 +13,7 @@ mod fuzz_regressions;
 mod golden;
 mod kimono;
 mod lsystem_cli;
+mod pen_stage;
 mod plot_cli;
 mod readme;
 mod resource_bounds;

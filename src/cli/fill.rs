@@ -98,6 +98,11 @@ pub(crate) struct FillArgs {
     /// Decimals in the SVG (0–8).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
     precision: u8,
+    /// Write the drawing and the fill as built: without the pen stage
+    /// (doubled line work and debris taken out, strokes merged and sorted
+    /// for little pen-up travel), which runs by default.
+    #[arg(long, help_heading = "Output")]
+    no_pen_stage: bool,
     /// Also write a PNG preview, in colour.
     #[arg(long, help_heading = "Output")]
     png: Option<PathBuf>,
@@ -119,6 +124,7 @@ impl FillArgs {
         job.steps = self.steps;
         job.pen = self.pen;
         job.dot = self.dot;
+        job.pen_stage = !self.no_pen_stage;
         if let Some(path) = &self.image {
             let fail =
                 |e: &dyn std::fmt::Display| CliError::Message(format!("{}: {e}", path.display()));
@@ -163,7 +169,7 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
     if let (Some(path), Some(bytes)) = (&args.png, &png) {
         write_atomic(path, bytes)?;
     }
-    let all = filled.scene.stats();
+    let all = filled.plotted.stats();
     eprintln!(
         "wrote {}{} ({} paths, {:.0} mm pen-down; the {} fill: {} paths, {:.0} mm, on {} pen {})",
         args.output.display(),
@@ -182,6 +188,6 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
     for note in &filled.notes {
         eprintln!("{}: {}", note.motif, note.text);
     }
-    warn_outside_page(&filled.scene);
+    warn_outside_page(&filled.plotted);
     Ok(())
 }

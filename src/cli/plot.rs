@@ -11,8 +11,8 @@ use moyo::output::gcode::{GcodeOptions, Origin};
 use moyo::output::hpgl::{CutterOptions, HpglOptions};
 use moyo::output::{write_atomic, SvgOptions};
 use moyo::plot::{
-    self, HatchOptions, MergeOptions, MultipassOptions, OccludeOptions, PlotOptions,
-    SimplifyOptions, SortOptions, Speeds, TransformOptions,
+    self, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
+    OccludeOptions, PlotOptions, SimplifyOptions, SortOptions, Speeds, TransformOptions,
 };
 use moyo::project::{self, PlotFormat, PlotJob, Preview};
 
@@ -74,6 +74,14 @@ pub(crate) struct PlotArgs {
         help_heading = "Stages"
     )]
     hatch_inset: f64,
+    /// Take out line work that lies on other line work of the same pen,
+    /// within TOL mm (default: a quarter of the pen's width).
+    #[arg(long, value_name = "TOL", num_args = 0..=1, help_heading = "Stages")]
+    dedupe: Option<Option<f64>>,
+    /// Take out strokes shorter than LEN mm that touch other line work of
+    /// the same pen (default: the pen's width); isolated dots stay.
+    #[arg(long, value_name = "LEN", num_args = 0..=1, help_heading = "Stages")]
+    debris: Option<Option<f64>>,
     /// Join paths whose ends are within TOL mm (default 0.05).
     #[arg(long, value_name = "TOL", num_args = 0..=1, default_missing_value = "0.05", help_heading = "Stages")]
     merge: Option<f64>,
@@ -265,6 +273,12 @@ impl PlotArgs {
                     .with_cross(self.cross)
                     .with_inset(self.hatch_inset)
             }),
+            dedupe: self
+                .dedupe
+                .map(|tolerance| DedupeOptions::DEFAULT.with_tolerance(tolerance)),
+            debris: self
+                .debris
+                .map(|length| DebrisOptions::DEFAULT.with_length(length)),
             merge: self.merge.map(|tolerance| {
                 let mut m = MergeOptions::DEFAULT;
                 m.tolerance = tolerance;
@@ -404,6 +418,16 @@ fn duration(seconds: f64) -> String {
     }
 }
 
+/// One row of `moyo stats`.
+struct Figures {
+    paths: usize,
+    down: f64,
+    up: f64,
+    time: f64,
+    doubled: f64,
+    debris: usize,
+}
+
 /// `moyo stats`.
 pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     let speeds = args.speeds.speeds()?;
@@ -416,38 +440,43 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
         writeln!(out, "{text}").map_err(stdout_error)?;
         return Ok(());
     }
-    let row = |out: &mut dyn Write, name: &str, paths: usize, down: f64, up: f64, t: f64| {
+    let row = |out: &mut dyn Write, name: &str, f: Figures| {
         writeln!(
             out,
-            "{name:<24} {paths:>8} {down:>14.1} {up:>14.1} {:>10}",
-            duration(t)
+            "{name:<24} {:>8} {:>14.1} {:>14.1} {:>10} {:>11.1} {:>7}",
+            f.paths,
+            f.down,
+            f.up,
+            duration(f.time),
+            f.doubled,
+            f.debris
         )
     };
     writeln!(
         out,
-        "{:<24} {:>8} {:>14} {:>14} {:>10}",
-        "layer", "paths", "pen-down mm", "pen-up mm", "time"
+        "{:<24} {:>8} {:>14} {:>14} {:>10} {:>11} {:>7}",
+        "layer", "paths", "pen-down mm", "pen-up mm", "time", "doubled mm", "debris"
     )
     .map_err(stdout_error)?;
     for l in &s.layers {
-        row(
-            &mut out,
-            &l.name,
-            l.paths,
-            l.pen_down_mm,
-            l.pen_up_mm,
-            l.plot_time_s,
-        )
-        .map_err(stdout_error)?;
+        let figures = Figures {
+            paths: l.paths,
+            down: l.pen_down_mm,
+            up: l.pen_up_mm,
+            time: l.plot_time_s,
+            doubled: l.doubled_mm,
+            debris: l.debris,
+        };
+        row(&mut out, &l.name, figures).map_err(stdout_error)?;
     }
-    row(
-        &mut out,
-        "total",
-        s.paths,
-        s.pen_down_mm,
-        s.pen_up_mm,
-        s.plot_time_s,
-    )
-    .map_err(stdout_error)?;
+    let total = Figures {
+        paths: s.paths,
+        down: s.pen_down_mm,
+        up: s.pen_up_mm,
+        time: s.plot_time_s,
+        doubled: s.doubled_mm,
+        debris: s.debris,
+    };
+    row(&mut out, "total", total).map_err(stdout_error)?;
     Ok(())
 }

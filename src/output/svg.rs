@@ -58,11 +58,6 @@ use kurbo::{Affine, BezPath, PathEl, Point};
 use super::number::{write_number, MAX_PRECISION};
 use crate::scene::{embed, Color, Group, Layer, Node, Pen, Scene, StyledPath};
 
-/// Pen used for layers whose pen number is missing from [`Scene::pens`]:
-/// their paths are still written (dropping drawing silently would be worse),
-/// in black at a common fineliner width.
-const FALLBACK_PEN_WIDTH: f64 = 0.3;
-
 /// Options of [`to_svg`].
 #[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -338,7 +333,7 @@ fn pen_or_fallback(scene: &Scene, number: u32) -> Pen {
         number,
         name: String::new(),
         color: Color::BLACK,
-        width: FALLBACK_PEN_WIDTH,
+        width: Pen::FALLBACK_WIDTH,
     })
 }
 

@@ -1,8 +1,12 @@
 //! The plot pipeline: stages that turn a scene into one a plotter runs well
-//! (hidden lines, hatching, merging, simplifying, ordering), usable on
-//! generated scenes and on imported SVGs alike. Each stage reads and writes
+//! (hidden lines, hatching, doubled line work, merging, debris,
+//! simplifying, ordering), usable on generated scenes and on imported SVGs
+//! alike. Each stage reads and writes
 //! a [`crate::scene::Scene`]; none generates motifs or writes files.
 
+mod cover;
+pub mod debris;
+pub mod dedupe;
 pub mod flatten;
 pub mod hatch;
 pub mod merge;
@@ -14,6 +18,8 @@ pub mod sort;
 pub mod stats;
 pub mod transform;
 
+pub use debris::DebrisOptions;
+pub use dedupe::DedupeOptions;
 pub use hatch::HatchOptions;
 pub use merge::MergeOptions;
 pub use multipass::MultipassOptions;

@@ -285,27 +285,75 @@ pub fn run_cancellable(scene: &mut Scene, o: &OccludeOptions, cancel: &Cancel) -
             apply(&mut layer.content, &mut outcomes.into_iter(), &mut fills);
         }
     }
-    if !fills.is_empty() {
-        fills.sort_by_key(|(paint, _)| *paint);
-        let mut content = Group::new(FILLS_LAYER_ID);
-        content
-            .children
-            .extend(fills.into_iter().map(|(_, p)| Node::Path(p)));
-        // A second run adds to the fills of the first.
-        if let Some(layer) = scene.layers.iter_mut().find(|l| l.id == FILLS_LAYER_ID) {
-            layer.content.children.extend(content.children);
-            return Ok(());
-        }
-        let pen = scene.pens.first().map_or(1, |p| p.number);
-        scene.layers.push(Layer {
-            id: FILLS_LAYER_ID.into(),
-            name: FILLS_LAYER_NAME.into(),
-            pen,
-            depth: i32::MAX,
-            content,
-        });
-    }
+    fills.sort_by_key(|(paint, _)| *paint);
+    push_fills(scene, fills.into_iter().map(|(_, p)| p).collect());
     Ok(())
+}
+
+/// Adds `fills` (fill-only paths in the coordinates of a layer's content)
+/// after those of [`FILLS_LAYER_NAME`], which is made when missing.
+fn push_fills(scene: &mut Scene, fills: Vec<StyledPath>) {
+    if fills.is_empty() {
+        return;
+    }
+    let children = fills.into_iter().map(Node::Path);
+    // A second run adds to the fills of the first.
+    if let Some(layer) = scene.layers.iter_mut().find(|l| l.id == FILLS_LAYER_ID) {
+        layer.content.children.extend(children);
+        return;
+    }
+    let mut content = Group::new(FILLS_LAYER_ID);
+    content.children.extend(children);
+    let pen = scene.pens.first().map_or(1, |p| p.number);
+    scene.layers.push(Layer {
+        id: FILLS_LAYER_ID.into(),
+        name: FILLS_LAYER_NAME.into(),
+        pen,
+        depth: i32::MAX,
+        content,
+    });
+}
+
+/// Moves the colour of every filled path a pen draws to a fill-only copy
+/// (id plus [`FILL_SUFFIX`]) in [`FILLS_LAYER_NAME`], in paint order, after
+/// the fills hidden-line removal put there: a pen draws outlines only, and
+/// once the plot stages reorder the paths of a pen a fill painted in place
+/// would cover strokes drawn before it in the new order. Fills behind every
+/// stroke look as fills in place do wherever hidden lines were removed.
+pub fn fills_behind(scene: &mut Scene) {
+    fn walk(group: &mut Group, to_layer: Affine, fills: &mut Vec<StyledPath>) {
+        let to_layer = to_layer * group.transform;
+        for child in &mut group.children {
+            match child {
+                Node::Group(g) => walk(g, to_layer, fills),
+                Node::Path(p) => {
+                    if let (Some(color), true) = (p.style.fill, p.style.is_drawn()) {
+                        fills.push(StyledPath {
+                            id: format!("{}{FILL_SUFFIX}", p.id),
+                            path: to_layer * p.path.clone(),
+                            style: Style {
+                                fill: Some(color),
+                                fill_only: true,
+                                ..Style::default()
+                            },
+                        });
+                        p.style.fill = None;
+                    }
+                }
+            }
+        }
+    }
+    let mut order: Vec<usize> = (0..scene.layers.len()).collect();
+    // Paint order: back (largest depth) first, as `layers_back_to_front`.
+    order.sort_by_key(|&i| std::cmp::Reverse(scene.layers[i].depth));
+    let mut fills = Vec::new();
+    for i in order {
+        let layer = &mut scene.layers[i];
+        if layer.is_plotted() {
+            walk(&mut layer.content, Affine::IDENTITY, &mut fills);
+        }
+    }
+    push_fills(scene, fills);
 }
 
 /// A path of the scene in paint order, on the page.

@@ -1,7 +1,7 @@
 //! The plot pipeline in its fixed order, every stage optional:
 //!
-//! transform → hatch → occlude → (one layer per pen) → merge → simplify →
-//! sort → multipass.
+//! transform → hatch → occlude → (one layer per pen) → dedupe → merge →
+//! debris → simplify → sort → multipass.
 //!
 //! Geometry is transformed first so that hatch spacing and tolerances are
 //! measured on the final page; fills become hatch lines before hidden lines
@@ -11,12 +11,23 @@
 //! work on one flat layer per pen, which is what a plotter runs. Masks
 //! ([`crate::scene::Style::mask`]) leave the scene after hidden-line
 //! removal, which is all they are for.
+//!
+//! The *pen stage* — dedupe, merge, debris, sort — is what makes a drawing
+//! what a pen should draw: no line twice, no slivers, little travel
+//! ([`PlotOptions::pen_ready`]). Every render runs it unless the
+//! description turns a step off ([`crate::spec::PlotSpec`]); `moyo plot`
+//! runs what its options ask. With merging, strokes are joined before
+//! doubled line work is taken out (an overlap split among short pieces is
+//! weighed whole) and again after (the pieces left join up with what they
+//! meet); debris goes after that, so that pieces that join are not taken
+//! for it.
 
 use serde::{Deserialize, Serialize};
 
 use super::{
-    flatten, hatch, merge, multipass, occlude, simplify, sort, transform, HatchOptions,
-    MergeOptions, MultipassOptions, OccludeOptions, SimplifyOptions, SortOptions, TransformOptions,
+    debris, dedupe, flatten, hatch, merge, multipass, occlude, simplify, sort, transform,
+    DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions, OccludeOptions,
+    SimplifyOptions, SortOptions, TransformOptions,
 };
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
@@ -36,9 +47,15 @@ pub struct PlotOptions {
     /// Turn fills into hatch lines.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hatch: Option<HatchOptions>,
+    /// Take out line work that lies on line work of the same pen.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dedupe: Option<DedupeOptions>,
     /// Join paths whose ends meet.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub merge: Option<MergeOptions>,
+    /// Take out strokes shorter than the pen is wide that touch others.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub debris: Option<DebrisOptions>,
     /// Drop points within a tolerance.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub simplify: Option<SimplifyOptions>,
@@ -67,9 +84,38 @@ impl PlotOptions {
         *self == PlotOptions::default()
     }
 
+    /// The pen stage alone, every step with its defaults: dedupe, merge,
+    /// debris and sort.
+    pub fn pen_ready() -> PlotOptions {
+        PlotOptions {
+            dedupe: Some(DedupeOptions::DEFAULT),
+            merge: Some(MergeOptions::DEFAULT),
+            debris: Some(DebrisOptions::DEFAULT),
+            sort: Some(SortOptions::DEFAULT),
+            ..PlotOptions::default()
+        }
+    }
+
+    /// These options without the stages that need one flat layer per pen,
+    /// so that the scene keeps its layers, groups and ids (a preview to
+    /// point at, not to plot).
+    pub fn keeping_groups(&self) -> PlotOptions {
+        PlotOptions {
+            dedupe: None,
+            merge: None,
+            debris: None,
+            simplify: None,
+            sort: None,
+            multipass: None,
+            ..self.clone()
+        }
+    }
+
     /// True when a stage needs one flat layer per pen.
     fn per_pen(&self) -> bool {
-        self.merge.is_some()
+        self.dedupe.is_some()
+            || self.debris.is_some()
+            || self.merge.is_some()
             || self.simplify.is_some()
             || self.sort.is_some()
             || self.multipass.is_some()
@@ -102,8 +148,14 @@ impl PlotOptions {
             h.validate()
                 .map_err(|e| prefix(e, &format!("{field}.hatch")))?;
         }
+        if let Some(tolerance) = self.dedupe.and_then(|d| d.tolerance) {
+            finite_range(&format!("{field}.dedupe.tolerance"), tolerance, 0.0, 10.0)?;
+        }
         if let Some(m) = &self.merge {
             finite_range(&format!("{field}.merge.tolerance"), m.tolerance, 0.0, 10.0)?;
+        }
+        if let Some(length) = self.debris.and_then(|d| d.length) {
+            finite_range(&format!("{field}.debris.length"), length, 0.0, 10.0)?;
         }
         if let Some(s) = &self.simplify {
             finite_range(
@@ -193,9 +245,23 @@ pub fn run_cancellable(mut scene: Scene, o: &PlotOptions, cancel: &Cancel) -> Re
     if !o.per_pen() {
         return Ok(scene);
     }
+    // Reordered, a fill would cover what its pen now draws before it.
+    occlude::fills_behind(&mut scene);
     let mut flat = flatten::by_pen(&scene);
+    if let Some(d) = &o.dedupe {
+        // Strokes joined first, so that an overlap split among pieces
+        // is weighed whole.
+        if let Some(m) = &o.merge {
+            merge::run(&mut flat, m);
+        }
+        dedupe::run(&mut flat, d);
+    }
+    cancel.check()?;
     if let Some(m) = &o.merge {
         merge::run(&mut flat, m);
+    }
+    if let Some(d) = &o.debris {
+        debris::run(&mut flat, d);
     }
     cancel.check()?;
     if let Some(s) = &o.simplify {

@@ -35,6 +35,7 @@ use kurbo::{Affine, BezPath, Point};
 use serde::{Deserialize, Serialize};
 
 use super::flatten::by_pen;
+use super::{debris, dedupe, DebrisOptions, DedupeOptions};
 use crate::geom::path_length;
 use crate::geom::subpath::subpaths;
 use crate::scene::Scene;
@@ -117,6 +118,10 @@ pub struct LayerStats {
     pub pen_up_mm: f64,
     /// Estimated time, s.
     pub plot_time_s: f64,
+    /// Length drawn over line work the pen already draws, mm.
+    pub doubled_mm: f64,
+    /// Strokes shorter than the pen's width touching other line work.
+    pub debris: usize,
 }
 
 /// Figures of a whole plot: totals over the plotted layers, and each layer.
@@ -132,6 +137,10 @@ pub struct PlotStats {
     pub pen_up_mm: f64,
     /// Estimated time, s (the sum over the layers).
     pub plot_time_s: f64,
+    /// Length drawn twice, mm (the sum over the layers).
+    pub doubled_mm: f64,
+    /// Debris strokes (the sum over the layers).
+    pub debris: usize,
     /// Per layer, in the order of the file: layers that are not plotted
     /// first, then the pens in plotting order.
     pub layers: Vec<LayerStats>,
@@ -146,6 +155,8 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
         pen_down_mm: 0.0,
         pen_up_mm: 0.0,
         plot_time_s: 0.0,
+        doubled_mm: 0.0,
+        debris: 0,
         layers: Vec::with_capacity(flat.layers.len()),
     };
     for layer in &flat.layers {
@@ -161,6 +172,17 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
         });
         let pen_down_mm: f64 = paths.iter().map(|p| path_length(p)).sum();
         let (pen_up_mm, pen_lifts) = travel(paths.iter().map(|p| &**p));
+        let width = scene.pen_width(layer.pen);
+        let doubled_mm = dedupe::doubled_length(
+            paths.iter().map(|p| &**p),
+            DedupeOptions::DEFAULT.tolerance_for(width),
+            2.0 * width,
+        );
+        let debris = debris::count(
+            paths.iter().map(|p| &**p),
+            DebrisOptions::DEFAULT.length_for(width),
+            width,
+        );
         let s = LayerStats {
             id: layer.id.clone(),
             name: layer.name.clone(),
@@ -171,6 +193,8 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
             pen_down_mm,
             pen_up_mm,
             plot_time_s: speeds.time(pen_down_mm, pen_up_mm, pen_lifts),
+            doubled_mm,
+            debris,
         };
         if !s.plotted {
             total.layers.push(s);
@@ -181,6 +205,8 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
         total.pen_down_mm += s.pen_down_mm;
         total.pen_up_mm += s.pen_up_mm;
         total.plot_time_s += s.plot_time_s;
+        total.doubled_mm += s.doubled_mm;
+        total.debris += s.debris;
         total.layers.push(s);
     }
     total

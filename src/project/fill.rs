@@ -24,8 +24,8 @@ use crate::plot::PlotOptions;
 use crate::scene::{Color, Group, Layer, Node, Pen, Scene, Stats};
 use crate::spec::{
     Distribution, Draw, LayerSpec, LimbSpec, LimitsSpec, MarginSpec, OutputSpec, PageSpec,
-    PaperSize, PenSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec, SitesSpec,
-    ValidSpec, VoronoiSpec, ZentangleSpec, FORMAT_VERSION,
+    PaperSize, PenSpec, PlotSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec,
+    SitesSpec, ValidSpec, VoronoiSpec, ZentangleSpec, FORMAT_VERSION,
 };
 
 /// What a fill draws: one of the ways the Voronoi family draws its sites.
@@ -38,7 +38,8 @@ pub enum FillPattern {
     /// The Delaunay edges between neighbouring sites inside the region,
     /// chained into long strokes.
     Delaunay,
-    /// A circle of radius [`FillJob::dot`] at each site: stippling.
+    /// A dot of ink of radius [`FillJob::dot`] at each site: stippling (a
+    /// tap of the pen, or a spiral filling the dot).
     /// Relaxed 10 times unless [`FillJob::relax`] says otherwise.
     Stipple,
     /// One pen-down line through every site. Relaxed 10 times unless
@@ -147,6 +148,10 @@ pub struct FillJob {
     /// relaxation (weighted Voronoi stippling), the image fitted to the
     /// shapes' bounding box, aspect kept, centred. Default none.
     pub image: Option<GreyImage>,
+    /// Run the pen stage ([`PlotOptions::pen_ready`]: no line twice, no
+    /// debris, merged and sorted) on the whole drawing for
+    /// [`Filled::plotted`]. Default on.
+    pub pen_stage: bool,
 }
 
 impl FillJob {
@@ -168,6 +173,7 @@ impl FillJob {
         pen: None,
         dot: None,
         image: None,
+        pen_stage: true,
     };
 
     /// This job with sites denser where `image` is dark.
@@ -256,6 +262,9 @@ impl Default for FillJob {
 pub struct Filled {
     /// The drawing, unchanged, plus the fill's layer (the last one).
     pub scene: Scene,
+    /// What a pen should draw: [`Filled::scene`] through the pen stage
+    /// (one layer per pen) when [`FillJob::pen_stage`] is on, else the same.
+    pub plotted: Scene,
     /// The id of the fill's layer.
     pub layer: String,
     /// The pen that draws the fill.
@@ -274,13 +283,19 @@ impl Filled {
     /// The SVG to plot, numbers written with `precision` decimals (see
     /// [`to_svg`]).
     pub fn svg(&self, precision: u8) -> String {
-        to_svg(&self.scene, &SvgOptions::DEFAULT.with_precision(precision))
+        to_svg(
+            &self.plotted,
+            &SvgOptions::DEFAULT.with_precision(precision),
+        )
     }
 
     /// The colour preview SVG: [`Filled::svg`] plus the drawing's fills
     /// and `%` layers, for looking at, not for plotting.
     pub fn preview_svg(&self, precision: u8) -> String {
-        to_svg(&self.scene, &SvgOptions::PREVIEW.with_precision(precision))
+        to_svg(
+            &self.plotted,
+            &SvgOptions::PREVIEW.with_precision(precision),
+        )
     }
 
     /// PNG preview at `dpi`, rendered from [`Filled::preview_svg`].
@@ -398,8 +413,14 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
         );
     }
     drawing.layers.push(layer);
+    let plotted = if job.pen_stage {
+        crate::plot::run(drawing.clone(), &PlotOptions::pen_ready())?
+    } else {
+        drawing.clone()
+    };
     Ok(Filled {
         scene: drawing,
+        plotted,
         layer: id,
         pen,
         new_pen,
@@ -534,7 +555,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
             lsystem: Vec::new(),
             vine: Vec::new(),
         }],
-        plot: PlotOptions::default(),
+        plot: PlotSpec::default(),
         adjust: Vec::new(),
     }
 }

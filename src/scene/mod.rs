@@ -35,6 +35,13 @@ pub struct Pen {
     pub width: f64,
 }
 
+impl Pen {
+    /// Width of a pen a scene uses but does not list, mm: its paths are
+    /// still written (dropping drawing silently would be worse), in black
+    /// at a common fineliner width.
+    pub const FALLBACK_WIDTH: f64 = 0.3;
+}
+
 /// How a path is painted.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Style {
@@ -267,6 +274,12 @@ impl Scene {
     /// The pen with this number.
     pub fn pen(&self, number: u32) -> Option<&Pen> {
         self.pens.iter().find(|p| p.number == number)
+    }
+
+    /// Width of the pen with this number, mm; [`Pen::FALLBACK_WIDTH`] when
+    /// the scene does not list it.
+    pub fn pen_width(&self, number: u32) -> f64 {
+        self.pen(number).map_or(Pen::FALLBACK_WIDTH, |p| p.width)
     }
 
     /// Calls `f` for every path with its transform to page coordinates.

@@ -17,6 +17,7 @@ mod locate;
 mod lsystem;
 mod params;
 mod paths;
+mod plot;
 mod region;
 mod trees;
 mod valid;
@@ -38,6 +39,7 @@ pub use lsystem::{
 };
 pub use params::{ResolvedTreeParams, TreeParams};
 pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
+pub use plot::{PlotSpec, Step};
 pub use region::{CircleSpec, HoleSpec, RegionSpec};
 pub use trees::{Growth, LimbSpec, LimbStyle, Rhythm, TreeOverride, TreeRule, TreeSetSpec};
 pub use valid::ValidSpec;
@@ -52,7 +54,6 @@ pub use zentangle::{Black, ManualStep, ToneSpec, ZentangleSpec, ELEMENTS, MAX_ST
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, LineCol, Result};
-use crate::plot::PlotOptions;
 use crate::scene::traditional::{self, Palette};
 use crate::units::{Margins, Orientation, Page, PaperName};
 
@@ -118,11 +119,10 @@ pub struct SceneSpec {
     /// otherwise.
     #[serde(default)]
     pub layers: Vec<LayerSpec>,
-    /// Plot pipeline stages applied before writing (none by default). The
-    /// option types are the plot stages' own, so the file and the library
-    /// cannot drift apart.
-    #[serde(default, skip_serializing_if = "PlotOptions::is_empty")]
-    pub plot: PlotOptions,
+    /// Plot pipeline stages applied before writing: the pen stage unless
+    /// turned off, the others when asked for ([`PlotSpec`]).
+    #[serde(default, skip_serializing_if = "PlotSpec::is_default")]
+    pub plot: PlotSpec,
     /// Final adjustment of single trees, flowers and leaves by id.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub adjust: Vec<AdjustSpec>,

@@ -57,8 +57,9 @@ pub struct VoronoiSpec {
     /// default 0, sharp). Cells narrower than twice `inset + round` vanish.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub round: f64,
-    /// With `"sites"`: radius of the circle drawn at each site, mm (0.05–50,
-    /// default 0.3).
+    /// With `"sites"`: radius of the dot of ink at each site, mm (0.05–50,
+    /// default 0.3): a tap of the pen when the pen is that wide, else a rim
+    /// and a spiral that fill it.
     #[serde(default = "default_dot")]
     pub dot: f64,
 }
@@ -76,7 +77,7 @@ pub enum Draw {
     /// Each cell shrunk by `inset` (and rounded by `round`): stained glass,
     /// cracked earth.
     Inset,
-    /// A small circle of radius `dot` at each site: stippling.
+    /// A dot of radius `dot` at each site: stippling.
     Sites,
     /// One pen-down line through every site (nearest neighbour, then 2-opt).
     Tour,

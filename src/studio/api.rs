@@ -193,7 +193,7 @@ async fn put_scene(State(app): State<App>, Query(q): Query<ViewQuery>, body: Byt
     };
     match apply(&app, text, Move::Edit).await {
         Ok(good) if q.view.as_deref() == Some("preview") => svg_response(&good.preview, &app),
-        Ok(good) => svg_response(&good.rendered.svg, &app),
+        Ok(good) => plot_svg_response(&good, &app).await,
         Err(response) => response,
     }
 }
@@ -208,8 +208,30 @@ pub(super) fn nothing_rendered() -> Response {
 
 async fn svg(State(app): State<App>) -> Response {
     match app.session.good() {
-        Some(good) => svg_response(&good.rendered.svg, &app),
+        Some(good) => plot_svg_response(&good, &app).await,
         None => nothing_rendered(),
+    }
+}
+
+/// What `moyo render` writes for the design.
+async fn plot_svg_response(good: &Arc<Good>, app: &App) -> Response {
+    match plot_svg(Arc::clone(good)).await {
+        Ok(svg) => svg_response(&svg, app),
+        Err(response) => response,
+    }
+}
+
+/// What `moyo render` writes for the design, made off the server's
+/// threads (the pen stage runs once per design).
+async fn plot_svg(good: Arc<Good>) -> Result<String, Response> {
+    match tokio::task::spawn_blocking(move || good.plotted().map(|p| p.svg.clone())).await {
+        Ok(Ok(svg)) => Ok(svg),
+        Ok(Err(e)) => Err(failure(&e)),
+        Err(e) => Err((
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("writing the SVG failed: {e}"),
+        )
+            .into_response()),
     }
 }
 
@@ -442,9 +464,12 @@ async fn save(State(app): State<App>, Json(request): Json<FileRequest>) -> Respo
     let bytes = if request.path.ends_with(".toml") {
         app.session.text().into_bytes()
     } else if request.path.ends_with(".svg") {
-        match app.session.good() {
-            Some(good) => good.rendered.svg.clone().into_bytes(),
-            None => return nothing_rendered(),
+        let Some(good) = app.session.good() else {
+            return nothing_rendered();
+        };
+        match plot_svg(good).await {
+            Ok(svg) => svg.into_bytes(),
+            Err(response) => return response,
         }
     } else {
         return failure(&Error::invalid("path", "save a .toml or an .svg file"));
@@ -513,7 +538,8 @@ async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Respons
                 } else {
                     PlotFormat::Hpgl(Default::default())
                 };
-                let plotted = plot_scene(good.rendered.scene.clone(), &PlotJob::new(format))?;
+                let scene = good.plotted()?.scene.clone();
+                let plotted = plot_scene(scene, &PlotJob::new(format))?;
                 let extension = if q.format == "gcode" { "gcode" } else { "hpgl" };
                 Ok((
                     plotted.bytes.into_bytes(),

@@ -4,12 +4,12 @@
 //! each new edit calls off the render before it, so only the newest edit
 //! is ever waited for.
 
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 use super::folder::Folder;
 use crate::error::{Error, Result};
 use crate::motif::Library;
-use crate::project::{load_motifs_with, render_cancellable, Cancel, Rendered};
+use crate::project::{load_motifs_with, render_for_editing, Cancel, Rendered};
 use crate::spec::{Format, ValidSpec};
 
 /// Most undo steps kept.
@@ -21,8 +21,12 @@ pub(crate) struct Good {
     pub text: String,
     /// The description, validated.
     pub spec: ValidSpec,
-    /// The scene and its SVG.
+    /// The scene with its layers, groups and ids, as the page points at
+    /// it ([`crate::project::render_for_editing`]).
     pub rendered: Rendered,
+    /// What a pen should draw: the render of the command line, made from
+    /// `rendered` when first asked for ([`Good::plotted`]).
+    plotted: OnceLock<Rendered>,
     /// The colour preview SVG.
     pub preview: String,
     /// The files it read (images, SVG paths, meshes).
@@ -30,6 +34,18 @@ pub(crate) struct Good {
     /// The description as a TOML value, every default written out: what
     /// the form and the handles read their numbers from.
     pub value: toml::Value,
+}
+
+impl Good {
+    /// What `moyo render` writes for this description: the pen stage run
+    /// on [`Good::rendered`], once.
+    pub(crate) fn plotted(&self) -> Result<&Rendered> {
+        if let Some(plotted) = self.plotted.get() {
+            return Ok(plotted);
+        }
+        let plotted = self.rendered.pen_ready(&self.spec)?;
+        Ok(self.plotted.get_or_init(|| plotted))
+    }
 }
 
 /// See the module docs.
@@ -196,7 +212,7 @@ impl Session {
                 )),
             ),
         })?;
-        let rendered = render_cancellable(&spec, &library, &mut |_| {}, cancel)?;
+        let rendered = render_for_editing(&spec, &library, &mut |_| {}, cancel)?;
         let preview = rendered.preview_svg();
         // Written by moyo a moment ago, so it reads back.
         let value = toml::from_str(&spec.to_toml())
@@ -205,6 +221,7 @@ impl Session {
             text: text.to_string(),
             spec,
             rendered,
+            plotted: OnceLock::new(),
             preview,
             library,
             value,

@@ -418,7 +418,14 @@ fn a_plant_in_front_hides_what_lies_behind_it() {
                 at = [[60, 150]]\nstep = 50\nstyle = \"outline\"\nwidth = 0.2\n\
                 [[layers]]\nname = \"back\"\n[[layers.paths]]\npoints = [[0, 120], [120, 120]]\n";
     let spec = crate::spec::SceneSpec::parse(text, crate::spec::Format::Toml).unwrap();
-    let rendered = crate::project::render(&spec).unwrap();
+    // The description's layers kept, to find the back one.
+    let rendered = crate::project::render_for_editing(
+        &spec,
+        &crate::motif::Library::new(),
+        &mut |_| {},
+        &crate::project::Cancel::default(),
+    )
+    .unwrap();
     let mut behind = Vec::new();
     let back = rendered
         .scene

@@ -185,7 +185,16 @@ fn a_vine_hides_what_lies_behind_it_in_a_composition() {
     // What the pens draw of the lines behind, and the area of the mask.
     let drawn = |draw: &str| -> (f64, f64) {
         let spec = SceneSpec::parse(&text(draw), Format::Toml).unwrap();
-        let behind: Vec<(String, BezPath)> = paths(&crate::project::render(&spec).unwrap().scene)
+        // Without the pen stage, which joins strokes of one pen whatever
+        // table drew them.
+        let rendered = crate::project::render_for_editing(
+            &spec,
+            &crate::motif::Library::new(),
+            &mut |_| {},
+            &crate::project::Cancel::default(),
+        )
+        .unwrap();
+        let behind: Vec<(String, BezPath)> = paths(&rendered.scene)
             .into_iter()
             .filter(|(id, _)| id.starts_with("back"))
             .collect();

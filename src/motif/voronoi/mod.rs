@@ -20,13 +20,14 @@
 //! - `sites`: a small circle at each site, ids `site-<i>`;
 //! - `tour`: one pen-down line through every site.
 
+mod dot;
 mod network;
 
 pub(in crate::motif) use network::cell_network;
 
 use std::collections::BTreeMap;
 
-use kurbo::{BezPath, Circle, Point, Shape};
+use kurbo::{BezPath, Point, Shape};
 
 use super::adjust::about;
 use super::region::region;
@@ -92,14 +93,14 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
             }
             Draw::Delaunay => numbered(&id, "stroke", triangulation(&sites, &region, &options)?),
             Draw::Inset => inset(spec, diagram.as_ref().expect("made for inset"), &id)?,
-            Draw::Sites => sites
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    let dot = Circle::new(*p, spec.dot).to_path(TOLERANCE);
-                    (format!("{id}.site-{i}"), dot)
-                })
-                .collect(),
+            Draw::Sites => {
+                let width = cx.pen_width();
+                sites
+                    .iter()
+                    .enumerate()
+                    .map(|(i, p)| (format!("{id}.site-{i}"), dot::dot(*p, spec.dot, width)))
+                    .collect()
+            }
             Draw::Tour => vec![(format!("{id}.line"), tour_path(&sites, &edges))],
         };
         cx.take_paths(paths.len(), || format!("voronoi {id}"))?;
