@@ -98,6 +98,10 @@ pub(crate) struct FillArgs {
     /// Decimals in the SVG (0–8).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
     precision: u8,
+    /// voronoi, delaunay: the fill's pen draws the shapes' outlines as
+    /// well (by default only the input's own pen draws them).
+    #[arg(long)]
+    outline: bool,
     /// Write the drawing and the fill as built: without the pen stage
     /// (doubled line work and debris taken out, strokes merged and sorted
     /// for little pen-up travel), which runs by default.
@@ -125,6 +129,7 @@ impl FillArgs {
         job.pen = self.pen;
         job.dot = self.dot;
         job.pen_stage = !self.no_pen_stage;
+        job.outline = self.outline;
         if let Some(path) = &self.image {
             let fail =
                 |e: &dyn std::fmt::Display| CliError::Message(format!("{}: {e}", path.display()));

@@ -148,6 +148,11 @@ pub struct FillJob {
     /// relaxation (weighted Voronoi stippling), the image fitted to the
     /// shapes' bounding box, aspect kept, centred. Default none.
     pub image: Option<GreyImage>,
+    /// With [`FillPattern::Voronoi`] and [`FillPattern::Delaunay`]: the
+    /// fill's pen draws the shapes' outlines too. Default off: the
+    /// drawing's own pen draws them, and a second pen going over them
+    /// would draw them twice.
+    pub outline: bool,
     /// Run the pen stage ([`PlotOptions::pen_ready`]: no line twice, no
     /// debris, merged and sorted) on the whole drawing for
     /// [`Filled::plotted`]. Default on.
@@ -173,6 +178,7 @@ impl FillJob {
         pen: None,
         dot: None,
         image: None,
+        outline: false,
         pen_stage: true,
     };
 
@@ -510,6 +516,9 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         inset: if glass { 0.8 } else { 1.0 },
         round: if glass { 1.0 } else { 0.0 },
         dot: job.dot.unwrap_or(0.3),
+        // The drawing's own pen draws the shapes' outlines.
+        outline: job.outline,
+        dot_range: None,
     });
     let zentangle = (job.pattern == FillPattern::Zentangle).then(|| ZentangleSpec {
         id: Some("pattern".into()),

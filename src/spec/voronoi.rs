@@ -62,6 +62,18 @@ pub struct VoronoiSpec {
     /// and a spiral that fill it.
     #[serde(default = "default_dot")]
     pub dot: f64,
+    /// With `"cells"` and `"delaunay"`: draw the region's outline too
+    /// (default true). Off when another pen already draws that outline —
+    /// the shapes `moyo fill` fills — so that it is not drawn twice.
+    #[serde(default = "default_outline", skip_serializing_if = "is_true")]
+    pub outline: bool,
+    /// With `"sites"` and sites weighted by `sites.image` or
+    /// `sites.density`: each dot's radius follows the density at its site,
+    /// from the first radius where the density is 0 to the second where
+    /// it is 1, mm (each 0.05–50, the first no larger), as StippleGen
+    /// sizes its stipples. Default: every dot `dot`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dot_range: Option<[f64; 2]>,
 }
 
 /// One kind of line a Voronoi pattern draws.
@@ -234,6 +246,14 @@ fn default_inset() -> f64 {
 
 fn default_dot() -> f64 {
     0.3
+}
+
+fn default_outline() -> bool {
+    true
+}
+
+fn is_true(v: &bool) -> bool {
+    *v
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -471,7 +491,27 @@ impl Family for VoronoiSpec {
         }
         range(&format!("{f}.inset"), self.inset, 0.01, 100.0)?;
         range(&format!("{f}.round"), self.round, 0.0, 50.0)?;
-        range(&format!("{f}.dot"), self.dot, 0.05, 50.0)
+        range(&format!("{f}.dot"), self.dot, 0.05, 50.0)?;
+        if let Some([light, dark]) = self.dot_range {
+            let field = format!("{f}.dot_range");
+            range(&format!("{field}[0]"), light, 0.05, 50.0)?;
+            range(&format!("{field}[1]"), dark, 0.05, 50.0)?;
+            if light > dark {
+                return Err(Error::invalid(
+                    field,
+                    format!(
+                        "runs from the lightest dot to the darkest: {light} is larger than {dark}"
+                    ),
+                ));
+            }
+            if !self.sites.is_weighted() {
+                return Err(Error::invalid(
+                    field,
+                    "follows the density of the sites: give sites.image or sites.density",
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// One unit per relaxation step and one for drawing.

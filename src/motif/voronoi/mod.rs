@@ -89,16 +89,26 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
         let paths: Vec<(String, BezPath)> = match draw {
             Draw::Cells => {
                 let diagram = diagram.as_ref().expect("made for cells");
-                numbered(&id, "stroke", network::cell_network(diagram))
+                numbered(&id, "stroke", network::cell_network(diagram, spec.outline))
             }
-            Draw::Delaunay => numbered(&id, "stroke", triangulation(&sites, &region, &options)?),
+            Draw::Delaunay => numbered(
+                &id,
+                "stroke",
+                triangulation(&sites, &region, &options, spec.outline)?,
+            ),
             Draw::Inset => inset(spec, diagram.as_ref().expect("made for inset"), &id)?,
             Draw::Sites => {
                 let width = cx.pen_width();
+                let radius = |p: Point| match (spec.dot_range, &density) {
+                    (Some([light, dark]), Some(d)) => {
+                        light + (dark - light) * d.at(p).clamp(0.0, 1.0)
+                    }
+                    _ => spec.dot,
+                };
                 sites
                     .iter()
                     .enumerate()
-                    .map(|(i, p)| (format!("{id}.site-{i}"), dot::dot(*p, spec.dot, width)))
+                    .map(|(i, p)| (format!("{id}.site-{i}"), dot::dot(*p, radius(*p), width)))
                     .collect()
             }
             Draw::Tour => vec![(format!("{id}.line"), tour_path(&sites, &edges))],
@@ -518,9 +528,15 @@ const TRIANGULATION_OUTLINE: f64 = 0.5;
 /// The constrained Delaunay triangulation of the sites and the region's
 /// outline (flattened within [`TRIANGULATION_OUTLINE`]), cut to the
 /// region: every edge once, chained into strokes. Inside a bay or around a
-/// hole no edge crosses out of the region, and the outline closes the
-/// triangles at the edge (a low-poly look to the very border).
-fn triangulation(sites: &[Point], region: &Region, options: &CellOptions) -> Result<Vec<BezPath>> {
+/// hole no edge crosses out of the region, and the outline (when
+/// `outline`) closes the triangles at the edge (a low-poly look to the
+/// very border).
+fn triangulation(
+    sites: &[Point],
+    region: &Region,
+    options: &CellOptions,
+    outline: bool,
+) -> Result<Vec<BezPath>> {
     let coarse = Domain::new(region, TRIANGULATION_OUTLINE)?;
     let cdt = constrained_delaunay(sites, &coarse, options)?;
     // Outline vertices join the sites as points; lines name them by
@@ -532,7 +548,8 @@ fn triangulation(sites: &[Point], region: &Region, options: &CellOptions) -> Res
         index.entry(key(*p)).or_insert(i);
     }
     let mut edges = cdt.between_sites.clone();
-    for line in cdt.to_outline.iter().chain(&cdt.outline) {
+    let border: &[kurbo::Line] = if outline { &cdt.outline } else { &[] };
+    for line in cdt.to_outline.iter().chain(border) {
         let [a, b] = [line.p0, line.p1].map(|p| {
             *index.entry(key(p)).or_insert_with(|| {
                 points.push(p);

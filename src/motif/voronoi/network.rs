@@ -14,13 +14,14 @@ const PROBE: f64 = 1e-5;
 
 /// The cells' outlines with every edge once: an edge two cells share is
 /// drawn by the cell of the lower site, an edge on the region's outline by
-/// its only cell. Runs of drawn edges along a contour are one stroke (a
-/// closed one when the whole contour is drawn).
+/// its only cell, when `outline` asks for the region's outline. Runs of
+/// drawn edges along a contour are one stroke (a closed one when the whole
+/// contour is drawn).
 ///
 /// Which cell is across an edge is the site nearest to a point just
 /// outside the edge's middle: the neighbour for a shared edge (the edge
 /// lies on their bisector), the cell's own site on the region's outline.
-pub(in crate::motif) fn cell_network(diagram: &Diagram) -> Vec<BezPath> {
+pub(in crate::motif) fn cell_network(diagram: &Diagram, outline: bool) -> Vec<BezPath> {
     let cells = diagram.cells();
     // Sites without a cell (merged, dropped, outside) are never the nearest.
     let owners: Vec<Point> = diagram
@@ -48,8 +49,10 @@ pub(in crate::motif) fn cell_network(diagram: &Diagram) -> Vec<BezPath> {
                     let (a, b) = (contour[k], contour[(k + 1) % n]);
                     let across = beyond(a, b, owners[i]);
                     match index.nearest_within(across, f64::INFINITY) {
-                        Some((j, _)) => j as usize >= i,
-                        None => true,
+                        // The cell's own site across: the region's outline.
+                        Some((j, _)) if j as usize == i => outline,
+                        Some((j, _)) => j as usize > i,
+                        None => outline,
                     }
                 })
                 .collect();

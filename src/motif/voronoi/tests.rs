@@ -817,3 +817,44 @@ fn sites_of_a_missing_table_are_refused_with_its_place() {
         );
     }
 }
+
+#[test]
+fn dots_follow_the_density_when_given_a_range() {
+    // Density u: 0 at the left edge, 1 at the right; radii 0.2 to 0.8 mm.
+    let s = scene(
+        "draw = [\"sites\"]\ndot_range = [0.2, 0.8]\n\
+         sites = { distribution = \"uniform\", count = 300, density = \"u\" }\n",
+    );
+    let dots = paths_of(&s, "sites");
+    let width = 0.3;
+    // The ink's radius: half the stroke's extent plus half the pen (a
+    // tap is no wider than the pen).
+    let radius = |d: &BezPath| (d.bounding_box().width() + width) / 2.0;
+    let (left, right): (Vec<&BezPath>, Vec<&BezPath>) = dots
+        .iter()
+        .partition(|d| d.bounding_box().center().x < 64.0);
+    let mean = |v: &[&BezPath]| v.iter().map(|d| radius(d)).sum::<f64>() / v.len() as f64;
+    assert!(
+        mean(&right) > mean(&left) + 0.2,
+        "{} {}",
+        mean(&left),
+        mean(&right)
+    );
+    assert!(dots
+        .iter()
+        .all(|d| radius(d) <= 0.8 + 1e-9 && radius(d) >= 0.15));
+    for (table, expected) in [
+        (
+            "dot_range = [0.5, 0.2]\n",
+            "runs from the lightest dot to the darkest",
+        ),
+        (
+            "dot_range = [0.2, 0.5]\n",
+            "follows the density of the sites",
+        ),
+        ("dot_range = [0.01, 0.5]\n", "dot_range[0]"),
+    ] {
+        let e = error(&format!("draw = [\"sites\"]\n{table}"));
+        assert!(e.contains(expected), "{table}: {e}");
+    }
+}

@@ -91,7 +91,7 @@ pub(super) fn cells_or_triangles(
         lines
     } else {
         let domain = Domain::new(region, TOLERANCE)?;
-        cell_network(&Diagram::new(&sites, &domain, &options)?)
+        cell_network(&Diagram::new(&sites, &domain, &options)?, true)
     };
     Ok(lines
         .into_iter()

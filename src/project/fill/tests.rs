@@ -1,4 +1,4 @@
-use kurbo::{Affine, PathEl, Point, Rect, Shape};
+use kurbo::{Affine, ParamCurve, PathEl, Point, Rect, Shape};
 
 use super::*;
 use crate::input::{import_svg, ImportOptions};
@@ -396,4 +396,41 @@ fn a_zentangle_fills_the_frame_and_refuses_the_sites_options() {
     assert_eq!(field, "steps");
     let (field, _) = invalid(frame(), job.with_steps(9000));
     assert_eq!(field, "steps");
+}
+
+#[test]
+fn the_fill_leaves_the_outline_to_the_drawing_unless_asked() {
+    // Length of the fill's strokes that run along the frame's outlines
+    // (the squares 10–90 and 35–65): both ends and the middle on them.
+    let along_outline = |filled: &Filled| {
+        let on = |p: Point| {
+            [(10.0, 90.0), (35.0, 65.0)].iter().any(|&(lo, hi)| {
+                // Clipped cells meet the outline within a micrometre.
+                let inside = |v: f64| (lo - 1e-3..=hi + 1e-3).contains(&v);
+                let at = |v: f64| (v - lo).abs() < 1e-3 || (v - hi).abs() < 1e-3;
+                (at(p.x) && inside(p.y)) || (at(p.y) && inside(p.x))
+            })
+        };
+        let mut length = 0.0;
+        fill_layer(filled)
+            .content
+            .visit_paths(Affine::IDENTITY, &mut |p, t| {
+                for seg in (t * p.path.clone()).segments() {
+                    let (a, b) = (seg.start(), seg.end());
+                    if on(a) && on(b) && on(a.midpoint(b)) {
+                        length += a.distance(b);
+                    }
+                }
+            });
+        length
+    };
+    for pattern in [FillPattern::Voronoi, FillPattern::Delaunay] {
+        let mut job = FillJob::new(pattern).with_spacing(6.0);
+        let alone = along_outline(&fill_scene(frame(), &job).unwrap());
+        assert!(alone < 1e-3, "{pattern:?}: {alone} mm along the outline");
+        job.outline = true;
+        // Both squares, all round.
+        let with = along_outline(&fill_scene(frame(), &job).unwrap());
+        assert!((with - 440.0).abs() < 1.0, "{pattern:?}: {with} mm");
+    }
 }
