@@ -40,6 +40,12 @@ seed = 1
 size = "A4"
 margin = 10
 
+# A fine pen: every outlined limb (0.3 mm at its thinnest) is wider than
+# two of it, so the outline dump shows outlines only.
+[[pens]]
+number = 1
+width = 0.1
+
 [output]
 precision = {PRECISION}
 

@@ -111,7 +111,6 @@ impl Stroke {
                 (table, *layer, format!("layers[{layer}].lsystem[new]"))
             }
         };
-        let growing = GrowingSketch::new(&table, &field, spec.limits.max_segments)?;
         let scene = &good.rendered.scene;
         let pen = scene
             .layers
@@ -121,6 +120,8 @@ impl Stroke {
                 || ("#1d1d1f".to_string(), 0.3),
                 |p| (p.color.to_string(), p.width),
             );
+        let growing =
+            GrowingSketch::new(&table, &field, spec.limits.max_segments)?.with_pen_width(pen.1);
         let mut stroke = Stroke {
             target,
             growing,

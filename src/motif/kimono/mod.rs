@@ -156,9 +156,12 @@ pub(super) fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) 
             width: limbs.width * place.scale,
             tip_width: limbs.tip_width * place.scale,
             bow: limbs.bow,
+            pen_width: cx.pen_width(),
         };
         let mut tree_group = Group::solid(&full_id);
-        for (k, path) in tree::limb_paths(&skeleton, &look).into_iter().enumerate() {
+        for (k, path) in
+            tree::strokes_first(tree::limb_paths(&skeleton, &look).into_iter().enumerate())
+        {
             tree_group.push_path(format!("{full_id}.limb-{k}"), path, style.clone());
         }
         group.push_group(tree_group);

@@ -7,7 +7,7 @@ use glam::DVec2;
 use kurbo::BezPath;
 
 use super::draw::{flat, Projection};
-use super::{drawn_limbs, MAX_SEGMENTS};
+use super::{drawn_limbs, strokes_first, MAX_SEGMENTS};
 use crate::error::{Error, Result};
 use crate::lsystem::sketch::Sketch;
 use crate::lsystem::Skeleton;
@@ -27,6 +27,8 @@ pub struct GrowingSketch {
     last: Option<DVec2>,
     smooth: bool,
     outline: bool,
+    /// The pen's width, mm (see [`GrowingSketch::with_pen_width`]).
+    pen_width: f64,
 }
 
 impl GrowingSketch {
@@ -53,7 +55,17 @@ impl GrowingSketch {
             last: None,
             smooth: spec.smooth,
             outline: spec.style == LimbStyle::Outline,
+            pen_width: 0.0,
         })
+    }
+
+    /// This sketch drawn by a pen `pen_width` mm wide: outlined limbs
+    /// narrower than two pen widths are drawn as centre strokes, as the
+    /// render draws them with the layer's pen. Default 0: every limb as
+    /// the table's style asks.
+    pub fn with_pen_width(mut self, pen_width: f64) -> GrowingSketch {
+        self.pen_width = pen_width;
+        self
     }
 
     /// Appends `points` to the stroke, up to where `steps` modules end
@@ -117,8 +129,15 @@ impl GrowingSketch {
     /// with the render.
     pub fn paths(&self) -> Vec<BezPath> {
         let flat = flat(&self.sketch.skeleton(), &Projection::PAGE);
-        drawn_limbs(&flat, self.smooth, self.outline, 1.0)
-            .map(|(_, path)| path)
-            .collect()
+        strokes_first(drawn_limbs(
+            &flat,
+            self.smooth,
+            self.outline,
+            1.0,
+            self.pen_width,
+        ))
+        .into_iter()
+        .map(|(_, path)| path)
+        .collect()
     }
 }

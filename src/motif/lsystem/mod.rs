@@ -34,6 +34,7 @@ mod tests;
 
 use kurbo::{Affine, Point, Rect};
 
+use super::tree::{strokes_first, THIN};
 use super::{fitted, flow_line, stroke_points, Context, Stroke};
 use crate::error::Result;
 use crate::geom::{PathWalker, Side, TOLERANCE};
@@ -90,7 +91,8 @@ pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) ->
         let mut plant = Group::solid(&plant_id);
         let scale = place.determinant().abs().sqrt();
         let outline = spec.style == LimbStyle::Outline;
-        for (k, path) in drawn_limbs(&flat, spec.smooth, outline, scale) {
+        let drawn = drawn_limbs(&flat, spec.smooth, outline, scale, cx.pen_width());
+        for (k, path) in strokes_first(drawn) {
             plant.push_path(format!("{plant_id}.limb-{k}"), *place * path, style.clone());
         }
         for (k, polygon) in flat.polygons.iter().enumerate() {
@@ -159,13 +161,16 @@ fn marked(spec: &LSystemSpec) -> String {
         .collect()
 }
 
-/// Each limb of `flat` that a pen can draw at `scale` with its index, as
-/// a path (see [`limb_path`]).
+/// Each limb of `flat` that a pen `pen_width` wide can draw at `scale`
+/// with its index, as a path (see [`limb_path`]): with `outline`, a limb
+/// whose outline would be narrower than [`THIN`] pen widths is drawn as
+/// its centre curve.
 fn drawn_limbs(
     flat: &Flat,
     smooth: bool,
     outline: bool,
     scale: f64,
+    pen_width: f64,
 ) -> impl Iterator<Item = (usize, kurbo::BezPath)> + '_ {
     flat.limbs
         .iter()
@@ -173,7 +178,11 @@ fn drawn_limbs(
         // Old lineages shrink geometrically: what no pen can draw is left
         // out rather than plotted as a dot.
         .filter(move |(_, limb)| limb.length() * scale >= MIN_LIMB)
-        .map(move |(k, limb)| (k, limb_path(limb, smooth, outline)))
+        .map(move |(k, limb)| {
+            let widest = limb.widths.iter().copied().fold(0.0, f64::max);
+            let wide = widest * scale >= THIN * pen_width;
+            (k, limb_path(limb, smooth, outline && wide))
+        })
 }
 
 /// The skeleton of a sketch grown along its whole stroke.
@@ -188,7 +197,8 @@ fn grow_sketch(spec: &LSystemSpec, sketch: &SketchSpec, cx: &mut Context<'_>) ->
         &cx.field("sketch"),
         cx,
     )?;
-    let mut growing = GrowingSketch::new(spec, &cx.item_field(), cx.budget().segments_left())?;
+    let mut growing = GrowingSketch::new(spec, &cx.item_field(), cx.budget().segments_left())?
+        .with_pen_width(cx.pen_width());
     growing.extend(&stroke)?;
     Ok(growing.skeleton())
 }

@@ -189,7 +189,10 @@ fn a_sketch_drawn_point_by_point_is_the_one_the_render_grows() {
         let text = test_scene::text("lsystem", &table);
         let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
         let table = &spec.layers[0].lsystem[0];
-        let mut growing = GrowingSketch::new(table, "layers[0].lsystem[0]", usize::MAX).unwrap();
+        // The layer's pen: the default 0.3 mm.
+        let mut growing = GrowingSketch::new(table, "layers[0].lsystem[0]", usize::MAX)
+            .unwrap()
+            .with_pen_width(0.3);
         let mut grown = Vec::new();
         for p in &stroke {
             growing.extend(std::slice::from_ref(p)).unwrap();

@@ -27,7 +27,15 @@ pub(crate) struct LimbLook {
     pub tip_width: f64,
     /// Bow of two-point limbs, fraction of their length.
     pub bow: f64,
+    /// Width of the pen that draws the tree, mm: an outline narrower than
+    /// [`THIN`] of it at its base is drawn as the limb's centre curve (its
+    /// two sides would run into one blot). 0: always as asked.
+    pub pen_width: f64,
 }
+
+/// A limb whose outline would be narrower than this many pen widths is
+/// drawn as a centre stroke.
+pub(crate) const THIN: f64 = 2.0;
 
 /// How much thinner a limb starts than its parent at the junction.
 const CHILD_WIDTH: f64 = 0.85;
@@ -46,7 +54,9 @@ pub(super) fn centre_curve(limb: &Limb, bow: f64) -> BezPath {
     }
 }
 
-/// One path per limb, in skeleton order.
+/// One path per limb, in skeleton order: closed outlines, or open centre
+/// curves (every limb with [`LimbStyle::Stroke`], the thin ones with
+/// [`LimbStyle::Outline`]).
 pub(crate) fn limb_paths(skeleton: &Skeleton, look: &LimbLook) -> Vec<BezPath> {
     let widths = base_widths(skeleton, look);
     skeleton
@@ -57,10 +67,24 @@ pub(crate) fn limb_paths(skeleton: &Skeleton, look: &LimbLook) -> Vec<BezPath> {
             let centre = centre_curve(limb, look.bow);
             match look.style {
                 LimbStyle::Stroke => centre,
+                LimbStyle::Outline if base < THIN * look.pen_width => centre,
                 LimbStyle::Outline => tapered_outline(&centre, base, look.tip_width.min(base)),
             }
         })
         .collect()
+}
+
+/// Limbs (each with its number) with the centre strokes first: the
+/// outlines painted after them — a tree's silhouette — hide what of a
+/// twig lies inside its branch when hidden lines are removed.
+pub(crate) fn strokes_first(
+    limbs: impl IntoIterator<Item = (usize, BezPath)>,
+) -> Vec<(usize, BezPath)> {
+    let (mut strokes, outlines): (Vec<_>, Vec<_>) = limbs
+        .into_iter()
+        .partition(|(_, p)| !crate::geom::subpath::is_closed(p));
+    strokes.extend(outlines);
+    strokes
 }
 
 /// Base width of every limb: the trunk's is `look.width`; a child's is

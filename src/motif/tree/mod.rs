@@ -7,5 +7,5 @@ mod skeleton;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use draw::{limb_paths, LimbLook};
+pub(crate) use draw::{limb_paths, strokes_first, LimbLook, THIN};
 pub(crate) use skeleton::{grow, Growth, Skeleton};

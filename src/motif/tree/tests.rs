@@ -299,6 +299,7 @@ fn budget_stops_runaway_growth_with_a_clear_error() {
 fn limb_paths_match_limbs() {
     let s = grow_free(TreeRule::Tree1, &exact(4));
     let look = LimbLook {
+        pen_width: 0.0,
         style: crate::spec::LimbStyle::Outline,
         width: 3.0,
         tip_width: 0.3,
@@ -312,6 +313,37 @@ fn limb_paths_match_limbs() {
             Some(kurbo::PathEl::ClosePath)
         ));
     }
+}
+
+#[test]
+fn limbs_thinner_than_two_pen_widths_are_centre_strokes_drawn_first() {
+    let s = grow_free(TreeRule::Tree1, &exact(4));
+    let look = |pen_width| LimbLook {
+        pen_width,
+        style: crate::spec::LimbStyle::Outline,
+        width: 3.0,
+        tip_width: 0.3,
+        bow: 0.08,
+    };
+    let closed = |p: &kurbo::BezPath| crate::geom::subpath::is_closed(p);
+    // A fine pen draws every limb as an outline; a 0.5 mm pen the limbs
+    // under 1 mm as strokes: the trunk (3 mm) stays an outline.
+    assert!(limb_paths(&s, &look(0.05)).iter().all(closed));
+    let paths = limb_paths(&s, &look(0.5));
+    assert!(closed(&paths[0]));
+    let strokes = paths.iter().filter(|p| !closed(p)).count();
+    assert!(
+        strokes > 0 && strokes < paths.len(),
+        "{strokes} of {}",
+        paths.len()
+    );
+    // In paint order the strokes come first, so that the outlines (the
+    // tree's silhouette) painted after them hide what of a twig lies
+    // inside its branch.
+    let ordered = strokes_first(paths.into_iter().enumerate());
+    let first_outline = ordered.iter().position(|(_, p)| closed(p)).unwrap();
+    assert!(ordered[first_outline..].iter().all(|(_, p)| closed(p)));
+    assert_eq!(first_outline, strokes);
 }
 
 fn rule_strategy() -> impl Strategy<Value = TreeRule> {
