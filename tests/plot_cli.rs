@@ -143,6 +143,8 @@ fn stats_show_doubled_line_work_and_debris_that_dedupe_and_debris_take_out() {
         "{before}"
     );
     assert_eq!(number(&before, "debris"), 1.0, "the sliver, not the dot");
+    // Three lines on one another: a 1 mm cell holds 3 mm of 0.3 mm line.
+    assert!((number(&before, "densest") - 0.9).abs() < 0.1, "{before}");
     let table = moyo(&dir)
         .args(["stats", "careless.svg"])
         .assert()
@@ -156,7 +158,7 @@ fn stats_show_doubled_line_work_and_debris_that_dedupe_and_debris_take_out() {
             .lines()
             .next()
             .unwrap()
-            .ends_with("doubled mm  debris"),
+            .ends_with("doubled mm  debris  densest"),
         "{table}"
     );
 

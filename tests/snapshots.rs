@@ -283,7 +283,7 @@ fn summary(scene: &Scene) -> String {
     let figures = moyo::plot::stats(scene, &moyo::plot::Speeds::DEFAULT);
     let mut out = format!(
         "{} plotted paths, {} mm pen-down; every path within {} mm; dump hash {:016x}\n\
-         pen: {} mm pen-up, {} mm doubled, {} debris, {} pen lifts\n\n",
+         pen: {} mm pen-up, {} mm doubled, {} debris, {} pen lifts, densest mm² {:.1}× solid\n\n",
         drawn.paths,
         mm(drawn.length),
         all.bounds_text(),
@@ -292,6 +292,7 @@ fn summary(scene: &Scene) -> String {
         mm(figures.doubled_mm),
         figures.debris,
         figures.pen_lifts,
+        figures.densest,
     );
     let width = rows
         .iter()

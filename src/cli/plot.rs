@@ -426,6 +426,7 @@ struct Figures {
     time: f64,
     doubled: f64,
     debris: usize,
+    densest: f64,
 }
 
 /// `moyo stats`.
@@ -443,19 +444,20 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     let row = |out: &mut dyn Write, name: &str, f: Figures| {
         writeln!(
             out,
-            "{name:<24} {:>8} {:>14.1} {:>14.1} {:>10} {:>11.1} {:>7}",
+            "{name:<24} {:>8} {:>14.1} {:>14.1} {:>10} {:>11.1} {:>7} {:>8.1}",
             f.paths,
             f.down,
             f.up,
             duration(f.time),
             f.doubled,
-            f.debris
+            f.debris,
+            f.densest
         )
     };
     writeln!(
         out,
-        "{:<24} {:>8} {:>14} {:>14} {:>10} {:>11} {:>7}",
-        "layer", "paths", "pen-down mm", "pen-up mm", "time", "doubled mm", "debris"
+        "{:<24} {:>8} {:>14} {:>14} {:>10} {:>11} {:>7} {:>8}",
+        "layer", "paths", "pen-down mm", "pen-up mm", "time", "doubled mm", "debris", "densest"
     )
     .map_err(stdout_error)?;
     for l in &s.layers {
@@ -466,6 +468,7 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
             time: l.plot_time_s,
             doubled: l.doubled_mm,
             debris: l.debris,
+            densest: l.densest,
         };
         row(&mut out, &l.name, figures).map_err(stdout_error)?;
     }
@@ -476,6 +479,7 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
         time: s.plot_time_s,
         doubled: s.doubled_mm,
         debris: s.debris,
+        densest: s.densest,
     };
     row(&mut out, "total", total).map_err(stdout_error)?;
     Ok(())

@@ -22,6 +22,18 @@
 //!   `pen_down_mm / pen_down_mm_s + pen_up_mm / pen_up_mm_s + pen_lifts ·
 //!   pen_lift_s`. Acceleration is ignored, so real plots of many tiny paths
 //!   take longer; pen changes between layers are not counted.
+//! - **Doubled length**: line work that lies on other line work of the
+//!   same pen, within a quarter of the pen's width, running the same way,
+//!   over runs of at least two pen widths
+//!   ([`super::dedupe::doubled_length`]: shorter shared runs are what
+//!   lines crossing at a shallow angle share).
+//! - **Debris**: strokes shorter than the pen's width that touch other
+//!   line work of the pen ([`super::debris::count`]): what the debris stage
+//!   would take out.
+//! - **Densest**: the most ink in any square millimetre of the sheet (a
+//!   grid aligned to the page), as a multiple of what covers it solid —
+//!   the line length there times the pen's width ([`densest`]). Past about
+//!   2, a felt tip pills or tears the paper.
 //!
 //! **Layers that are not plotted** (AxiDraw's `%` documentation layers,
 //! [`Layer::is_plotted`](crate::scene::Layer::is_plotted) false) are listed
@@ -34,6 +46,7 @@ use std::borrow::Cow;
 use kurbo::{Affine, BezPath, Point};
 use serde::{Deserialize, Serialize};
 
+use super::cover::Pieces;
 use super::flatten::by_pen;
 use super::{debris, dedupe, DebrisOptions, DedupeOptions};
 use crate::geom::path_length;
@@ -122,6 +135,8 @@ pub struct LayerStats {
     pub doubled_mm: f64,
     /// Strokes shorter than the pen's width touching other line work.
     pub debris: usize,
+    /// The most ink in any mm² of the sheet, in multiples of solid.
+    pub densest: f64,
 }
 
 /// Figures of a whole plot: totals over the plotted layers, and each layer.
@@ -141,6 +156,9 @@ pub struct PlotStats {
     pub doubled_mm: f64,
     /// Debris strokes (the sum over the layers).
     pub debris: usize,
+    /// The most ink in any mm² of the sheet, in multiples of solid (the
+    /// largest over the layers).
+    pub densest: f64,
     /// Per layer, in the order of the file: layers that are not plotted
     /// first, then the pens in plotting order.
     pub layers: Vec<LayerStats>,
@@ -157,6 +175,7 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
         plot_time_s: 0.0,
         doubled_mm: 0.0,
         debris: 0,
+        densest: 0.0,
         layers: Vec::with_capacity(flat.layers.len()),
     };
     for layer in &flat.layers {
@@ -195,6 +214,7 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
             plot_time_s: speeds.time(pen_down_mm, pen_up_mm, pen_lifts),
             doubled_mm,
             debris,
+            densest: densest(paths.iter().map(|p| &**p), width),
         };
         if !s.plotted {
             total.layers.push(s);
@@ -207,9 +227,34 @@ pub fn stats(scene: &Scene, speeds: &Speeds) -> PlotStats {
         total.plot_time_s += s.plot_time_s;
         total.doubled_mm += s.doubled_mm;
         total.debris += s.debris;
+        total.densest = total.densest.max(s.densest);
         total.layers.push(s);
     }
     total
+}
+
+/// Pieces of line [`densest`] puts in the cell of their middle are no
+/// longer than this (mm): a cell's length is right within a twentieth of a
+/// millimetre for every line through it.
+const PIECE: f64 = 0.05;
+
+/// The most ink a pen `width` mm wide lays into one square millimetre of
+/// a grid aligned to the page, in multiples of solid: the length of line
+/// whose pieces' middles fall in the cell, times the width.
+pub fn densest<'a>(paths: impl IntoIterator<Item = &'a BezPath>, width: f64) -> f64 {
+    let mut cells: rustc_hash::FxHashMap<(i64, i64), f64> = Default::default();
+    for path in paths {
+        for sub in subpaths(path) {
+            let pieces = Pieces::new(sub.segments().collect(), false, PIECE, 0.01);
+            for p in &pieces.pieces {
+                let mid = p.a.midpoint(p.b);
+                *cells
+                    .entry((mid.x.floor() as i64, mid.y.floor() as i64))
+                    .or_default() += p.len();
+            }
+        }
+    }
+    cells.values().copied().fold(0.0_f64, f64::max) * width
 }
 
 /// Pen-up travel of drawing `paths` in this order, starting from the
@@ -402,6 +447,23 @@ mod tests {
             (0, 0.0, 0.0, 0.0)
         );
         assert_eq!(s.layers.len(), 1);
+    }
+
+    #[test]
+    fn densest_is_the_most_ink_in_a_square_millimetre() {
+        // Ten lines 0.1 mm apart across one millimetre, and a long line
+        // elsewhere: 10 mm of a 0.3 mm line in one mm², three times solid.
+        let mut path = BezPath::new();
+        for k in 0..10 {
+            let y = 5.05 + 0.09 * f64::from(k);
+            path.move_to((20.0, y));
+            path.line_to((21.0, y));
+        }
+        path.move_to((40.0, 40.5));
+        path.line_to((80.0, 40.5));
+        let d = densest([&path], 0.3);
+        assert!((d - 3.0).abs() < 0.01, "{d}");
+        assert_eq!(densest([&BezPath::new()], 0.3), 0.0);
     }
 
     #[test]
