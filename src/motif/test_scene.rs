@@ -29,3 +29,14 @@ pub(crate) fn error(family: &str, table: &str) -> String {
         Err(e) => e.to_string(),
     }
 }
+
+/// The scene of any description after its plot stages but the pen stage
+/// (layers, groups and ids kept, see
+/// [`crate::project::render_for_editing`]), with no user files.
+pub(crate) fn editing(spec: &crate::spec::ValidSpec) -> Scene {
+    let library = crate::motif::Library::new();
+    let cancel = crate::project::Cancel::default();
+    crate::project::render_for_editing(spec, &library, &mut |_| {}, &cancel)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .scene
+}

@@ -422,16 +422,9 @@ fn a_plant_in_front_hides_what_lies_behind_it() {
                 [[layers]]\nname = \"back\"\n[[layers.paths]]\npoints = [[0, 120], [120, 120]]\n";
     let spec = crate::spec::SceneSpec::parse(text, crate::spec::Format::Toml).unwrap();
     // The description's layers kept, to find the back one.
-    let rendered = crate::project::render_for_editing(
-        &spec,
-        &crate::motif::Library::new(),
-        &mut |_| {},
-        &crate::project::Cancel::default(),
-    )
-    .unwrap();
+    let scene = crate::motif::test_scene::editing(&spec);
     let mut behind = Vec::new();
-    let back = rendered
-        .scene
+    let back = scene
         .layers
         .iter()
         .find(|l| l.name == "back")

@@ -187,14 +187,8 @@ fn a_vine_hides_what_lies_behind_it_in_a_composition() {
         let spec = SceneSpec::parse(&text(draw), Format::Toml).unwrap();
         // Without the pen stage, which joins strokes of one pen whatever
         // table drew them.
-        let rendered = crate::project::render_for_editing(
-            &spec,
-            &crate::motif::Library::new(),
-            &mut |_| {},
-            &crate::project::Cancel::default(),
-        )
-        .unwrap();
-        let behind: Vec<(String, BezPath)> = paths(&rendered.scene)
+        let scene = crate::motif::test_scene::editing(&spec);
+        let behind: Vec<(String, BezPath)> = paths(&scene)
             .into_iter()
             .filter(|(id, _)| id.starts_with("back"))
             .collect();
