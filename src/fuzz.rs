@@ -23,8 +23,9 @@ use std::collections::BTreeMap;
 use arbitrary::Unstructured;
 
 use crate::error::{Error, Result};
+use crate::family::lsystem::engine::LSystem;
+use crate::geom::mesh::TriMesh;
 use crate::input::{decode_image, import_svg, ImportOptions};
-use crate::lsystem::LSystem;
 use crate::output::to_obj;
 use crate::plot::{
     DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, OccludeOptions, PlotOptions,
@@ -35,7 +36,6 @@ use crate::rng::Seed;
 use crate::scene::embedded_description;
 use crate::spec::field::{point_lists, value_at_mut as at, xy};
 use crate::spec::{Format, SceneSpec};
-use crate::vine::TriMesh;
 
 /// The path budget of a fuzzed description: its own `limits.max_paths`,
 /// but at most this many, so one case cannot take long.

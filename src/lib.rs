@@ -72,10 +72,10 @@ use {clap as _, indicatif as _};
 
 mod cancel;
 mod error;
+mod family;
 pub mod fuzz;
 pub mod geom;
 pub mod input;
-pub mod lsystem;
 pub mod motif;
 pub mod output;
 pub mod plot;
@@ -87,7 +87,6 @@ pub mod spec;
 pub mod studio;
 pub mod templates;
 pub mod units;
-pub mod vine;
 
 // The chosen entry points, flat as kurbo's: a description becomes a
 // `ValidSpec`, `render` makes the scene and its SVG, `plot_scene` runs a
@@ -108,3 +107,6 @@ pub use scene::{
 };
 pub use spec::{Format, SceneSpec, ValidSpec};
 pub use units::{Margins, Orientation, Page, PaperName};
+
+pub use family::lsystem::engine as lsystem;
+pub use family::vine::engine as vine;

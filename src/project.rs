@@ -11,14 +11,14 @@ use std::path::Path;
 use kurbo::BezPath;
 
 use crate::error::{Cause, Error, Result};
+use crate::geom::mesh::TriMesh;
 use crate::input::{decode_image, import_svg, ImportOptions};
-use crate::motif::{self, Context, Flow};
 use crate::motif::{user_drawing, Library};
+use crate::motif::{Context, Flow};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot;
 use crate::scene::{Color, Group, Layer, Model, Pen, Scene};
 use crate::spec::{LayerItem, LayerSpec, MotifRef, Points, Table, ValidSpec, VoronoiSpec};
-use crate::vine::TriMesh;
 
 pub use crate::cancel::Cancel;
 pub use crate::motif::{Note, Progress};
@@ -248,7 +248,7 @@ fn build_layer<'a>(
     let mut content = Group::new(format!("{id}.motifs"));
     for item in layer.items() {
         cancel.check()?;
-        let group = motif::build(&item, cx)?;
+        let group = crate::family::build(&item, cx)?;
         let segments = group.segment_count();
         cx.budget()
             .take_segments(segments, || format!("`{}`", group.id))?;
@@ -340,7 +340,7 @@ fn table_sites(
     }
     let depth = layer.depth.unwrap_or(index as i32);
     cx.enter_layer((index, layer), &ids[index], depth);
-    motif::voronoi_sites(item, voronoi, &mut cx)
+    crate::family::voronoi_sites(item, voronoi, &mut cx)
 }
 
 /// Stable, unique, SVG-safe ids for the layers, made from their names.

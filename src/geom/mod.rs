@@ -1,25 +1,21 @@
-//! Geometry helpers on top of kurbo: natural splines, bowed limbs, walking a
-//! path by arc length, the "far side of a line" test, tapered outlines, a
-//! nearest-point index, the reading of a path's subpaths that every stage
-//! shares, shapes stacked in depth that hide one another, points spread
-//! inside a region (uniform, jittered grid, Poisson-disk), Voronoi cells,
-//! Delaunay triangulations and Lloyd relaxation inside a region, one
-//! tour through many points, triangles covering a polygon, and for 3D
-//! line drawings a camera and exact hidden-line removal against triangles
-//! (`camera`, `hidden`).
+//! Geometry helpers on top of kurbo that more than one stage or family
+//! uses: natural splines, walking a path by arc length, the "far side of
+//! a line" test, tapered outlines, a nearest-point index, the reading of a
+//! path's subpaths that every stage shares, shapes stacked in depth that
+//! hide one another, points spread inside a region (uniform, jittered
+//! grid, Poisson-disk), Voronoi cells, Delaunay triangulations and Lloyd
+//! relaxation inside a region, and one tour through many points. Geometry
+//! only one family uses lives in that family's folder (`crate::family`).
 //!
 //! Coordinates are page coordinates in millimetres with y pointing *down*
-//! (the SVG convention); `camera` and `hidden` work in a 3D model's units
-//! and give pictures in the same convention. "Left" and "right" are as
-//! seen by someone walking along a direction on the page: for a direction
-//! pointing up the page, left is towards smaller x.
+//! (the SVG convention). "Left" and "right" are as seen by someone walking
+//! along a direction on the page: for a direction pointing up the page,
+//! left is towards smaller x.
 
-pub mod camera;
 pub mod clip;
 pub mod density;
 pub mod depth;
-pub mod ffd;
-pub mod hidden;
+pub(crate) mod mesh;
 pub mod offset;
 pub mod polylabel;
 pub mod region;
@@ -28,8 +24,6 @@ pub mod subpath;
 pub mod trace;
 pub mod voronoi;
 
-mod bow;
-mod ears;
 mod point_index;
 mod side;
 pub(crate) mod simplify;
@@ -38,8 +32,6 @@ mod taper;
 mod tour;
 mod walk;
 
-pub use bow::bowed_cubic;
-pub use ears::ear_clip;
 pub use point_index::PointIndex;
 pub use side::SideTest;
 pub use spline::{natural_spline, natural_spline_cubics};

@@ -16,7 +16,7 @@ use crate::spec::AdjustSpec;
 
 /// The adjustments of a scene, by id, with a record of which were used.
 #[derive(Debug)]
-pub struct Adjustments<'a> {
+pub(crate) struct Adjustments<'a> {
     by_id: BTreeMap<&'a str, usize>,
     list: &'a [AdjustSpec],
     used: Vec<bool>,
@@ -25,7 +25,7 @@ pub struct Adjustments<'a> {
 impl<'a> Adjustments<'a> {
     /// Indexes a description's adjustments (ids are unique after
     /// validation).
-    pub fn new(list: &'a [AdjustSpec]) -> Adjustments<'a> {
+    pub(crate) fn new(list: &'a [AdjustSpec]) -> Adjustments<'a> {
         Adjustments {
             by_id: list
                 .iter()
@@ -38,7 +38,7 @@ impl<'a> Adjustments<'a> {
     }
 
     /// The adjustment of `id`, if any; marks it used.
-    pub fn take(&mut self, id: &str) -> Option<&'a AdjustSpec> {
+    pub(crate) fn take(&mut self, id: &str) -> Option<&'a AdjustSpec> {
         let i = *self.by_id.get(id)?;
         self.used[i] = true;
         Some(&self.list[i])
@@ -49,7 +49,11 @@ impl<'a> Adjustments<'a> {
     ///
     /// # Errors
     /// When the adjustment asks for a motif.
-    pub fn take_without_motif(&mut self, id: &str, what: &str) -> Result<Option<&'a AdjustSpec>> {
+    pub(crate) fn take_without_motif(
+        &mut self,
+        id: &str,
+        what: &str,
+    ) -> Result<Option<&'a AdjustSpec>> {
         let Some(i) = self.by_id.get(id).copied() else {
             return Ok(None);
         };
@@ -132,7 +136,7 @@ impl<'a> Adjustments<'a> {
 
     /// Marks every adjustment of the parts of `id` (ids starting with
     /// `id.`) used: they address something real that is hidden with it.
-    pub fn take_parts_of(&mut self, id: &str) {
+    pub(crate) fn take_parts_of(&mut self, id: &str) {
         let prefix = format!("{id}.");
         for (k, i) in self.by_id.range(prefix.as_str()..) {
             if !k.starts_with(&prefix) {
@@ -146,7 +150,7 @@ impl<'a> Adjustments<'a> {
     ///
     /// # Errors
     /// [`Error::Invalid`] naming `adjust[i].id`.
-    pub fn finish(self) -> Result<()> {
+    pub(crate) fn finish(self) -> Result<()> {
         match self.used.iter().position(|u| !u) {
             None => Ok(()),
             Some(i) => Err(Error::invalid(

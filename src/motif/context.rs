@@ -22,7 +22,7 @@ use crate::spec::{LayerSpec, PenSpec, ValidSpec};
 use crate::units::Page;
 
 /// How far generation has come, in work units of any family (a tree, a
-/// cell, a plant; see [`crate::spec::Family::work`]).
+/// cell, a plant; see `Family::work`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Progress {
     /// Units done so far.
@@ -51,7 +51,7 @@ struct Frame<'a> {
 }
 
 /// What every generator needs (see the module docs).
-pub struct Context<'a> {
+pub(crate) struct Context<'a> {
     seed: Seed,
     page: Page,
     library: &'a Library,
@@ -140,30 +140,30 @@ impl<'a> Context<'a> {
 
     /// The full field path of `name` in the table being built
     /// (`layers[1].paths[0].width`), for errors found while generating.
-    pub fn field(&self, name: &str) -> String {
+    pub(crate) fn field(&self, name: &str) -> String {
         format!("{}.{name}", self.item_field())
     }
 
     /// The full field path of the table being built (`layers[1].paths[0]`).
-    pub fn item_field(&self) -> String {
+    pub(crate) fn item_field(&self) -> String {
         format!("layers[{}].{}", self.frame().index, self.item)
     }
 
     /// The page the scene is drawn on (its drawable area is inside the
     /// margins).
-    pub fn page(&self) -> Page {
+    pub(crate) fn page(&self) -> Page {
         self.page
     }
 
     /// The random stream of the motif with id `id` (a full SVG id): the
     /// same id always gets the same stream.
-    pub fn stream(&self, id: &str) -> RandomStream {
+    pub(crate) fn stream(&self, id: &str) -> RandomStream {
         self.seed.derive(id).stream()
     }
 
     /// The width (mm) of the pen the current layer draws with (0.3 when
     /// the description names no such pen).
-    pub fn pen_width(&self) -> f64 {
+    pub(crate) fn pen_width(&self) -> f64 {
         let number = self.layer.map(|f| f.spec.pen);
         self.pens
             .iter()
@@ -172,38 +172,33 @@ impl<'a> Context<'a> {
     }
 
     /// The palette whose colours `@1`–`@5` name.
-    pub fn palette(&self) -> &'static Palette {
+    pub(crate) fn palette(&self) -> &'static Palette {
         self.palette
     }
 
-    /// The scene's seed.
-    pub fn seed(&self) -> Seed {
-        self.seed
-    }
-
     /// Built-in and loaded user motifs and paths.
-    pub fn library(&self) -> &'a Library {
+    pub(crate) fn library(&self) -> &'a Library {
         self.library
     }
 
     /// The overall flow (region lines).
-    pub fn flow(&self) -> &'a Flow {
+    pub(crate) fn flow(&self) -> &'a Flow {
         self.flow
     }
 
     /// The description of the layer being built.
     ///
-    pub fn layer(&self) -> &'a LayerSpec {
+    pub(crate) fn layer(&self) -> &'a LayerSpec {
         self.frame().spec
     }
 
     /// The SVG id of the layer being built.
-    pub fn layer_id(&self) -> &'a str {
+    pub(crate) fn layer_id(&self) -> &'a str {
         self.frame().id
     }
 
     /// The depth of the layer being built (0 front, larger further back).
-    pub fn depth(&self) -> i32 {
+    pub(crate) fn depth(&self) -> i32 {
         self.frame().depth
     }
 
@@ -213,7 +208,7 @@ impl<'a> Context<'a> {
     }
 
     /// The scene's path budget.
-    pub fn budget(&mut self) -> &mut PathBudget {
+    pub(crate) fn budget(&mut self) -> &mut PathBudget {
         &mut self.budget
     }
 
@@ -221,7 +216,7 @@ impl<'a> Context<'a> {
     ///
     /// # Errors
     /// [`crate::Error::Budget`] when the scene would exceed its limit.
-    pub fn take_paths(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
+    pub(crate) fn take_paths(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
         // Generators take paths often and before their work: the place to
         // notice that the render was called off.
         self.cancel.check()?;
@@ -234,12 +229,12 @@ impl<'a> Context<'a> {
     }
 
     /// The final adjustments by id.
-    pub fn adjust(&mut self) -> &mut Adjustments<'a> {
+    pub(crate) fn adjust(&mut self) -> &mut Adjustments<'a> {
         &mut self.adjust
     }
 
     /// Reports `units` more units of work done.
-    pub fn advance(&mut self, units: usize) {
+    pub(crate) fn advance(&mut self, units: usize) {
         if units > 0 {
             self.progress.done = (self.progress.done + units).min(self.progress.total);
             (self.report)(self.progress);
@@ -280,7 +275,7 @@ impl<'a> Context<'a> {
     }
 
     /// Tells the user `text` about the motif `motif` (its group id).
-    pub fn note(&mut self, motif: &str, text: impl Into<String>) {
+    pub(crate) fn note(&mut self, motif: &str, text: impl Into<String>) {
         self.notes.push(Note {
             motif: motif.to_string(),
             text: text.into(),
@@ -289,7 +284,7 @@ impl<'a> Context<'a> {
 
     /// Hands on the 3D model a generator made beside its drawing (for
     /// the OBJ export).
-    pub fn model(&mut self, model: Model) {
+    pub(crate) fn model(&mut self, model: Model) {
         self.models.push(model);
     }
 

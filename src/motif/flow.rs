@@ -16,7 +16,7 @@ pub(crate) fn flow_line(points: &Points) -> BezPath {
 /// The overall flow: what stops growth, and the region lines themselves
 /// (strokes for a sketch to grow along).
 #[derive(Debug)]
-pub struct Flow {
+pub(crate) struct Flow {
     upper: Option<SideTest>,
     lower: Option<SideTest>,
     lines: [Option<BezPath>; 2],
@@ -40,7 +40,7 @@ fn left_to_right(points: &Points) -> Option<BezPath> {
 
 impl Flow {
     /// The flow of a scene description's `[lines]`.
-    pub fn new(lines: &RegionLinesSpec) -> Flow {
+    pub(crate) fn new(lines: &RegionLinesSpec) -> Flow {
         Flow {
             upper: lines
                 .upper
@@ -58,13 +58,13 @@ impl Flow {
     }
 
     /// The upper (`upper`) or the lower region line, left to right.
-    pub fn line(&self, upper: bool) -> Option<&BezPath> {
+    pub(crate) fn line(&self, upper: bool) -> Option<&BezPath> {
         self.lines[usize::from(!upper)].as_ref()
     }
 
     /// True when `p` may not be part of a plant: beyond the upper line, or
     /// — for one growing downward — beyond the lower line.
-    pub fn blocks(&self, p: Point, downward: bool) -> bool {
+    pub(crate) fn blocks(&self, p: Point, downward: bool) -> bool {
         self.upper.as_ref().is_some_and(|t| t.is_beyond(p))
             || (downward && self.lower.as_ref().is_some_and(|t| t.is_beyond(p)))
     }

@@ -23,9 +23,9 @@ use crate::output::{render_png, to_svg, SvgOptions};
 use crate::plot::PlotOptions;
 use crate::scene::{Color, Group, Layer, Node, Pen, Scene, Stats};
 use crate::spec::{
-    Distribution, Draw, LayerSpec, LimbSpec, LimitsSpec, MarginSpec, OutputSpec, PageSpec,
-    PaperSize, PenSpec, PlotSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec,
-    SitesSpec, ValidSpec, VoronoiSpec, ZentangleSpec, FORMAT_VERSION,
+    Distribution, Draw, LayerSpec, LimitsSpec, MarginSpec, OutputSpec, PageSpec, PaperSize,
+    PenSpec, PlotSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec, SitesSpec,
+    ValidSpec, VoronoiSpec, ZentangleSpec, FORMAT_VERSION,
 };
 
 /// What a fill draws: one of the ways the Voronoi family draws its sites.
@@ -552,17 +552,9 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         }],
         lines: RegionLinesSpec::default(),
         layers: vec![LayerSpec {
-            name: layer.into(),
-            pen,
-            depth: None,
-            limbs: LimbSpec::default(),
-            trees: Vec::new(),
-            background: None,
-            paths: Vec::new(),
             voronoi: voronoi.into_iter().collect(),
             zentangle: zentangle.into_iter().collect(),
-            lsystem: Vec::new(),
-            vine: Vec::new(),
+            ..LayerSpec::new(layer, pen)
         }],
         plot: PlotSpec::default(),
         adjust: Vec::new(),

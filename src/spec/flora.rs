@@ -1,7 +1,7 @@
-//! The kimono composition parts of a description: flowers and leaves on
-//! tree sets (SPEC §1.5), background layers (SPEC §1.6) and the final
-//! adjustment of single trees, flowers and leaves by id (SPEC §1,
-//! design step 4).
+//! The ornament parts of a description that several families share:
+//! motifs by name or file, flowers and leaves on limbs (SPEC §1.5), paint
+//! and shading, and the final adjustment of single trees, flowers and
+//! leaves by id (SPEC §1, design step 4).
 //!
 //! Decisions where the source is silent:
 //!
@@ -16,9 +16,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::layer::Family;
 use super::validate::{point, range};
-use super::{Growth, Points, TreeParams, TreeRule};
 use crate::error::{Error, Result};
 use crate::scene::traditional::Palette;
 use crate::scene::Color;
@@ -522,149 +520,6 @@ impl LeavesSpec {
     }
 }
 
-/// A background layer (SPEC §1.6): a mask grown from hidden trees and a
-/// pattern clipped to it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BackgroundSpec {
-    /// Mask generation mode, 1–4 (see SPEC §1.6; default 1).
-    #[serde(default = "default_composite")]
-    pub composite: u8,
-    /// Mist bands (egasumi) instead of stamps on hidden trees: the mask is
-    /// made of long bands with rounded ends and stepped edges along the
-    /// centre line.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub mist: Option<MistSpec>,
-    /// Tree rule of the hidden mask trees; default tree2 for composites
-    /// 1 and 2, tree4 (sparser) for 3 and 4.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub rule: Option<TreeRule>,
-    /// Number of mask trees (0–1000) along the centre line.
-    #[serde(default = "default_mask_count")]
-    pub count: u32,
-    /// Centre line of the mask trees (≥ 2 points, mm).
-    pub centre: Points,
-    /// Growth direction of the mask trees; they grow both ways from the
-    /// centre line (up, limited by the upper line; down, by the lower).
-    #[serde(default)]
-    pub growth: Growth,
-    /// Parameters of the mask trees.
-    #[serde(default)]
-    pub params: TreeParams,
-    /// Circles `[x, y, radius]` (mm): composite 2 grows only inside them,
-    /// composite 4 stamps only inside them.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub circles: Vec<[f64; 3]>,
-    /// The shape stamped at every mask vertex (default circle).
-    #[serde(default = "default_stamp")]
-    pub stamp: MotifRef,
-    /// Stamp width in mm (0.5–500).
-    #[serde(default = "default_stamp_size")]
-    pub stamp_width: f64,
-    /// Stamp height in mm; default: from the stamp's proportions.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stamp_height: Option<f64>,
-    /// Rounds the union of stamps into clouds (kumo), mm (0–500; default
-    /// half the stamp width): the mask is grown by this much, then shrunk
-    /// by as much (a closing), which fills the notches between stamps with
-    /// arcs of this radius and joins stamps closer than twice it. `0`
-    /// keeps the source's union of stamps, a string of balloons.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub cloud: Option<f64>,
-    /// Pattern 1–5 composited into the mask (SPEC §1.6), or 0: none, the
-    /// mask's outline alone (for a later layer to fill).
-    pub pattern: u8,
-    /// The pattern's motifs: none for 0 and 1; one for 5; one or two for
-    /// 2–4.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub motifs: Vec<MotifRef>,
-    /// Tile width in mm (0.5–500).
-    #[serde(default = "default_tile_size")]
-    pub width: f64,
-    /// Tile height in mm; default: from the motif's proportions.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub height: Option<f64>,
-    /// Gap between tiles in mm (0–500), patterns 3 and 4.
-    #[serde(default)]
-    pub spacing: f64,
-    /// Draw the mask's outline.
-    #[serde(default = "yes")]
-    pub outline: bool,
-    /// The base: fill/hatch of the whole mask (pattern 1, and under the
-    /// tiles of 2–4).
-    #[serde(default, skip_serializing_if = "PaintSpec::is_default")]
-    pub paint: PaintSpec,
-}
-
-fn default_mask_count() -> u32 {
-    6
-}
-
-fn default_composite() -> u8 {
-    1
-}
-
-/// Mist bands, 霞 egasumi (suyari-gasumi, the long trailing kind of
-/// yūzen): the background's mask as bands that run along its centre line,
-/// stacked across it, each with rounded ends and a stepped upper edge.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MistSpec {
-    /// Bands stacked across the centre line (1–50, default 3).
-    #[serde(default = "default_bands")]
-    pub bands: u32,
-    /// Thickness of a band, mm (0.5–500, default 12).
-    #[serde(default = "default_band_height")]
-    pub height: f64,
-    /// Space between two bands (each with its steps), mm (0–500; default
-    /// half the height).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub gap: Option<f64>,
-    /// Steps on a band's upper edge (0–5, default 2): shorter bands
-    /// stacked on it, each 0.4 of a height higher.
-    #[serde(default = "default_steps")]
-    pub steps: u32,
-}
-
-fn default_bands() -> u32 {
-    3
-}
-
-fn default_band_height() -> f64 {
-    12.0
-}
-
-fn default_steps() -> u32 {
-    2
-}
-
-impl MistSpec {
-    fn check(&self, f: &str) -> Result<()> {
-        range(&format!("{f}.bands"), self.bands, 1, 50)?;
-        size(&format!("{f}.height"), self.height)?;
-        if let Some(g) = self.gap {
-            range(&format!("{f}.gap"), g, 0.0, 500.0)?;
-        }
-        range(&format!("{f}.steps"), self.steps, 0, 5)
-    }
-}
-
-fn default_stamp() -> MotifRef {
-    MotifRef::Name(MotifKind::Circle)
-}
-
-fn default_stamp_size() -> f64 {
-    14.0
-}
-
-fn default_tile_size() -> f64 {
-    10.0
-}
-
-fn yes() -> bool {
-    true
-}
-
 /// Final adjustment of one tree, flower or leaf, by its id in the SVG.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -690,7 +545,7 @@ pub struct AdjustSpec {
     pub motif: Option<MotifRef>,
 }
 
-fn size(f: &str, v: f64) -> Result<()> {
+pub(crate) fn size(f: &str, v: f64) -> Result<()> {
     range(f, v, 0.5, 500.0)
 }
 
@@ -744,99 +599,6 @@ impl LeavesSpec {
             j.paint.check(&format!("{f}.paint"))?;
         }
         Ok(())
-    }
-}
-
-impl BackgroundSpec {
-    /// The radius (mm) of the closing that rounds the mask into clouds.
-    pub fn cloud_radius(&self) -> f64 {
-        self.cloud.unwrap_or(0.25 * self.stamp_width)
-    }
-
-    /// The rule of the mask trees.
-    pub fn mask_rule(&self) -> TreeRule {
-        self.rule.unwrap_or(if self.composite <= 2 {
-            TreeRule::Tree2
-        } else {
-            TreeRule::Tree4
-        })
-    }
-}
-
-impl Family for BackgroundSpec {
-    fn offers_regions(&self) -> bool {
-        true
-    }
-
-    fn check(&self, f: &str) -> Result<()> {
-        range(&format!("{f}.composite"), self.composite, 1, 4)?;
-        if let Some(m) = &self.mist {
-            m.check(&format!("{f}.mist"))?;
-        }
-        range(&format!("{f}.count"), self.count, 0, 1000)?;
-        super::validate::points(&format!("{f}.centre"), &self.centre, 2)?;
-        self.params.check(&format!("{f}.params"))?;
-        if matches!(self.composite, 2 | 4) && self.circles.is_empty() {
-            return Err(Error::invalid(
-                format!("{f}.circles"),
-                format!(
-                    "composite {} needs at least one circle [x, y, radius]",
-                    self.composite
-                ),
-            ));
-        }
-        for (i, c) in self.circles.iter().enumerate() {
-            point(&format!("{f}.circles[{i}]"), [c[0], c[1]])?;
-            range(&format!("{f}.circles[{i}][2]"), c[2], 0.1, 10_000.0)?;
-        }
-        self.stamp.check(&format!("{f}.stamp"))?;
-        size(&format!("{f}.stamp_width"), self.stamp_width)?;
-        if let Some(h) = self.stamp_height {
-            size(&format!("{f}.stamp_height"), h)?;
-        }
-        if let Some(c) = self.cloud {
-            range(&format!("{f}.cloud"), c, 0.0, 500.0)?;
-        }
-        range(&format!("{f}.pattern"), self.pattern, 0, 5)?;
-        let (min, max) = match self.pattern {
-            0 | 1 => (0, 0),
-            5 => (1, 1),
-            _ => (1, 2),
-        };
-        let mf = format!("{f}.motifs");
-        if self.motifs.len() < min || self.motifs.len() > max {
-            let takes = match (min, max) {
-                (0, 0) => "no motifs".to_string(),
-                (1, 1) => "exactly one motif".to_string(),
-                _ => format!("{min} or {max} motifs"),
-            };
-            return Err(Error::invalid(
-                mf,
-                format!(
-                    "pattern {} takes {takes}, got {}",
-                    self.pattern,
-                    self.motifs.len()
-                ),
-            ));
-        }
-        for (i, m) in self.motifs.iter().enumerate() {
-            m.check(&format!("{mf}[{i}]"))?;
-        }
-        size(&format!("{f}.width"), self.width)?;
-        if let Some(h) = self.height {
-            size(&format!("{f}.height"), h)?;
-        }
-        range(&format!("{f}.spacing"), self.spacing, 0.0, 500.0)?;
-        self.paint.check(&format!("{f}.paint"))
-    }
-
-    /// One unit per hidden mask tree.
-    fn work(&self) -> usize {
-        self.count as usize
-    }
-
-    fn motifs(&self) -> Vec<&MotifRef> {
-        std::iter::once(&self.stamp).chain(&self.motifs).collect()
     }
 }
 

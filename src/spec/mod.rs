@@ -9,47 +9,27 @@
 //! Errors name the field path (`layers[0].trees[1].params.ratio1`), the
 //! allowed range, and — for TOML — the line and column of the value.
 
-mod camera;
 pub mod field;
-mod flora;
-mod layer;
+pub(crate) mod flora;
 mod locate;
-mod lsystem;
-mod params;
-mod paths;
 mod plot;
-mod region;
-mod trees;
+pub(crate) mod region;
+mod stroke;
 mod valid;
-mod validate;
-mod vine;
-mod voronoi;
-mod zentangle;
+pub(crate) mod validate;
 
-pub use camera::{CameraPreset, CameraSpec, Orbit};
+pub use crate::family::tables::*;
+pub use crate::family::{LayerItem, LayerSpec, Table};
 pub use flora::{
-    AdjustSpec, Assign, BackgroundSpec, BokashiSpec, BuiltMotif, FileMotif, FlowerSites,
-    FlowerSpec, JointLeafSpec, LeafRingSpec, LeavesSpec, MainLargest, MistSpec, MotifKind,
-    MotifRef, OrnamentSpec, PaintSpec, ShadeFrom,
+    AdjustSpec, Assign, BokashiSpec, BuiltMotif, FileMotif, FlowerSites, FlowerSpec, JointLeafSpec,
+    LeafRingSpec, LeavesSpec, MainLargest, MotifKind, MotifRef, OrnamentSpec, PaintSpec, ShadeFrom,
 };
-pub use layer::{Family, LayerItem, LayerSpec, Table};
-pub use lsystem::{
-    FlowLine, LSystemSpec, NamedView, SketchSpec, TropismSpec, View,
-    MAX_ITERATIONS as MAX_LSYSTEM_ITERATIONS,
-};
-pub use params::{ResolvedTreeParams, TreeParams};
-pub use paths::{Anchor, Orient, PathsSpec, MAX_COPIES};
 pub use plot::{PlotSpec, Step};
 pub use region::{CircleSpec, HoleSpec, RegionSpec};
-pub use trees::{Growth, LimbSpec, LimbStyle, Rhythm, TreeOverride, TreeRule, TreeSetSpec};
+pub(crate) use stroke::one_stroke;
+pub use stroke::FlowLine;
 pub use valid::ValidSpec;
 pub use validate::FieldRange;
-pub use vine::{GuideSpec, Part, SupportSpec, VineSpec};
-pub use voronoi::{
-    Distribution, Draw, RelaxationMethod, SitesSpec, VoronoiSpec, DEFAULT_SPACING, MAX_RELAX,
-    MAX_SITES,
-};
-pub use zentangle::{Black, ManualStep, ToneSpec, ZentangleSpec, ELEMENTS, MAX_STEPS, PROCEDURES};
 
 use serde::{Deserialize, Serialize};
 

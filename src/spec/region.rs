@@ -46,13 +46,13 @@ pub struct RegionSpec {
 }
 
 impl RegionSpec {
-    pub(super) fn is_page(&self) -> bool {
+    pub(crate) fn is_page(&self) -> bool {
         *self == RegionSpec::default()
     }
 
     /// The layer it takes its regions from, as [`super::Family::layers_read`]
     /// lists it for a table whose region is its field `region`.
-    pub(super) fn layers_read(&self) -> Vec<(&'static str, &str)> {
+    pub(crate) fn layers_read(&self) -> Vec<(&'static str, &str)> {
         self.layer
             .as_deref()
             .map(|name| ("region.layer", name))
@@ -105,7 +105,7 @@ fn one_shape(f: &str, given: &[(&str, bool)], outer: bool) -> Result<()> {
 }
 
 impl RegionSpec {
-    pub(super) fn check(&self, f: &str) -> Result<()> {
+    pub(crate) fn check(&self, f: &str) -> Result<()> {
         one_shape(
             f,
             &[

@@ -16,7 +16,7 @@ use toml_edit::{Array, Table};
 use super::edit::{point_list, table_index, tenth, Edit};
 use super::session::Good;
 use crate::error::{Error, Result};
-use crate::motif::GrowingSketch;
+use crate::family::lsystem::GrowingSketch;
 use crate::output::write_path_data;
 use crate::spec::LSystemSpec;
 

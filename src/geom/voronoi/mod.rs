@@ -92,8 +92,10 @@ use crate::error::{Error, Result};
 use crate::units::MAX_COORD;
 
 mod density_grid;
+mod network;
 mod relax;
 
+pub(crate) use network::{cell_network, chains};
 use relax::Moments;
 pub use relax::{
     lloyd_step, relax, weighted_lloyd_step, Lbg, LloydStep, Method, Relaxation, Relaxed, StepReport,

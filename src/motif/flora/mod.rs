@@ -33,12 +33,12 @@ use kurbo::{Affine, BezPath, ParamCurveArea, Point, Shape};
 use crate::error::{Error, Result};
 use crate::geom::clip::clip_stroke;
 use crate::geom::density::GreyImage;
+use crate::geom::mesh::TriMesh;
 use crate::geom::offset::offset;
 use crate::geom::region::{FillRule, Region};
 use crate::geom::subpath::subpaths;
 use crate::rng::RandomStream;
 use crate::spec::{MotifKind, MotifRef};
-use crate::vine::TriMesh;
 
 /// A motif drawn in motif units (see the module docs).
 #[derive(Debug, Clone, PartialEq)]

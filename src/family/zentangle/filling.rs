@@ -1,0 +1,312 @@
+//! The filling loop (SPEC §2.4, the paper's §5.3) in vector form: the
+//! white regions are exact regions, each with its seed and its largest
+//! inscribed circle (found once, when the region is made); a step takes
+//! the region whose circle is largest, draws the procedure its seed names
+//! only inside it (`compose`), and puts back the white pieces left, each
+//! with a seed — the one the mark it lies in was given, or its parent's.
+//! Black is finished. A step touches one region and the pieces it makes,
+//! whatever the number of regions (a heap keeps them by circle).
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use kurbo::{BezPath, Point, Shape as _};
+
+use super::compose::compose;
+use super::element::{Mark, Paint};
+use super::procedure::{draw, Allowed, Drawn, Target, G1};
+use crate::error::{Error, Result};
+use crate::family::zentangle::ffd::Lattice;
+use crate::geom::polylabel::pole_of_inaccessibility;
+use crate::geom::region::Region;
+use crate::geom::TOLERANCE;
+use crate::rng::RandomStream;
+
+/// A white region waiting to be filled.
+#[derive(Debug, Clone)]
+struct Area {
+    region: Region,
+    /// The procedure it calls; `None`: any (the blank page's seed, G1).
+    seed: Option<u32>,
+    pole: Point,
+    radius: f64,
+    /// How much more (or less) black its procedure paints than the
+    /// paper's (1 without tone control).
+    black: f64,
+}
+
+/// What one step drew.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Step {
+    /// The procedure drawn.
+    pub(super) procedure: Option<u32>,
+    /// The visible lines, inside the region drawn in.
+    pub(super) strokes: Vec<BezPath>,
+    /// The black parts, finished.
+    pub(super) black: Vec<Region>,
+}
+
+/// How the loop draws.
+#[derive(Clone, Copy)]
+pub(super) struct Settings<'a> {
+    /// Element size as a fraction of √(box area).
+    pub(super) scale: f64,
+    /// Regions narrower than this (inscribed radius, mm) are left white.
+    pub(super) smallest: f64,
+    /// Element deformation (1: the paper's).
+    pub(super) wobble: f64,
+    /// Per-stroke bending, mm (0: none).
+    pub(super) hand: f64,
+    /// Every line drawn a second time, bent by up to this, mm (0: once).
+    pub(super) retrace: f64,
+    /// The pen's width, mm.
+    pub(super) pen: f64,
+    /// How often lattices follow the outline (0–1).
+    pub(super) follow: f64,
+    /// How deep ML plants branch (0: a single stem).
+    pub(super) branching: u32,
+    /// The target darkness (0–1) at a point, with how strongly it steers
+    /// the loop (0–1); `None`: the paper's even tone.
+    pub(super) tone: Option<(&'a dyn Fn(Point) -> f64, f64)>,
+}
+
+/// The loop's state.
+pub(super) struct Filling<'a> {
+    areas: Vec<Option<Area>>,
+    /// By inscribed radius times the tone's weight (as ordered bits, both
+    /// being ≥ 0), the oldest first among equals.
+    queue: BinaryHeap<(u64, Reverse<usize>)>,
+    allowed: Allowed,
+    settings: Settings<'a>,
+    /// The per-stroke bending's own numbers, so that turning it on
+    /// changes how the lines are drawn, not what is drawn.
+    hand: RandomStream,
+}
+
+impl<'a> Filling<'a> {
+    /// The blank `regions` (each a white region of its own, as the
+    /// sections a string makes), split by `lines` (drawn as the first
+    /// step); `hand` draws the per-stroke bending.
+    pub(super) fn new(
+        regions: &[Region],
+        lines: Vec<BezPath>,
+        allowed: Allowed,
+        settings: Settings<'a>,
+        hand: RandomStream,
+    ) -> Result<(Filling<'a>, Step)> {
+        let pen = settings.pen;
+        let mut filling = Filling {
+            areas: Vec::new(),
+            queue: BinaryHeap::new(),
+            allowed,
+            settings,
+            hand,
+        };
+        let marks: Vec<Mark> = lines
+            .into_iter()
+            .map(|path| Mark {
+                path,
+                paint: Paint::Line,
+            })
+            .collect();
+        let mut step = Step::default();
+        for region in regions {
+            let composed = compose(region, &marks, pen, flattening(pen))?;
+            for piece in composed.white {
+                filling.push(piece.region, None);
+            }
+            step.strokes.extend(composed.strokes);
+            step.black.extend(composed.black);
+        }
+        Ok((filling, step))
+    }
+
+    fn push(&mut self, region: Region, seed: Option<u32>) {
+        let precision = precision(&region, self.settings.pen);
+        let Some((pole, radius)) = pole_of_inaccessibility(&region, precision) else {
+            return;
+        };
+        // Tone control: a region counts as narrower where the target is
+        // light, so it waits, and stays white once it counts as too
+        // narrow; where it is dark, black is likelier.
+        let (weight, black) = match self.settings.tone {
+            None => (1.0, 1.0),
+            Some((tone, contrast)) => {
+                let dark = tone(pole).clamp(0.0, 1.0);
+                (
+                    1.0 - contrast + contrast * dark,
+                    1.0 - contrast + contrast * 2.0 * dark,
+                )
+            }
+        };
+        if radius * weight < self.settings.smallest {
+            return;
+        }
+        let id = self.areas.len();
+        self.areas.push(Some(Area {
+            region,
+            seed,
+            pole,
+            radius,
+            black,
+        }));
+        self.queue.push(((radius * weight).to_bits(), Reverse(id)));
+    }
+
+    /// The region the next automatic step will draw in, and the radius
+    /// of its largest inscribed circle (the widest region, without tone
+    /// control).
+    #[cfg(test)]
+    pub(super) fn widest(&self) -> Option<(Region, f64)> {
+        let mut queue = self.queue.clone();
+        while let Some((_, Reverse(id))) = queue.pop() {
+            if let Some(a) = &self.areas[id] {
+                return Some((a.region.clone(), a.radius));
+            }
+        }
+        None
+    }
+
+    /// Each mark followed by its line drawn again, bent by up to
+    /// `retrace` mm: a pen going over its line a second time, which
+    /// thickens it unevenly (line weight by hand). The copies paint
+    /// nothing and call nothing.
+    fn retraced(&mut self, drawn: Drawn) -> Result<Drawn> {
+        let mut out = Drawn::default();
+        for (m, seed) in drawn.marks.into_iter().zip(drawn.seeds) {
+            let again = Mark {
+                path: m.path.clone(),
+                paint: Paint::Line,
+            };
+            let again = by_hand(&again, self.settings.retrace, &mut self.hand)?;
+            out.marks.extend([m, again]);
+            out.seeds.extend([seed, None]);
+        }
+        Ok(out)
+    }
+
+    /// The white regions left that are wide enough to draw in.
+    pub(super) fn open(&self) -> usize {
+        self.areas.iter().flatten().count()
+    }
+
+    /// One automatic step: the widest region gets the procedure its seed
+    /// names. `None` when no region is left.
+    pub(super) fn step(&mut self, rng: &mut RandomStream) -> Result<Option<Step>> {
+        while let Some((_, Reverse(id))) = self.queue.pop() {
+            if let Some(area) = self.areas[id].take() {
+                let procedure = match area.seed {
+                    Some(p) if self.allowed.procedures.contains(&p) => p,
+                    // A seed left out: an allowed one of the same group.
+                    Some(p) => self.allowed.pick(&[p], rng),
+                    None => self.allowed.pick(G1, rng),
+                };
+                return self.draw_in(area, procedure, rng).map(Some);
+            }
+        }
+        Ok(None)
+    }
+
+    /// A manual step: the region holding `at` gets `procedure`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] (field `at`) when no white region holds the
+    /// point.
+    pub(super) fn step_at(
+        &mut self,
+        at: Point,
+        procedure: u32,
+        rng: &mut RandomStream,
+    ) -> Result<Step> {
+        let id = self
+            .areas
+            .iter()
+            .position(|a| a.as_ref().is_some_and(|a| a.region.contains(at)))
+            .ok_or_else(|| {
+                Error::invalid(
+                    "at",
+                    format!(
+                        "({}, {}) lies in no white region wide enough to draw in (it may be \
+                         on a line, in black, or in a region narrower than `smallest`)",
+                        at.x, at.y
+                    ),
+                )
+            })?;
+        let area = self.areas[id].take().expect("found alive");
+        self.draw_in(area, procedure, rng)
+    }
+
+    fn draw_in(&mut self, area: Area, procedure: u32, rng: &mut RandomStream) -> Result<Step> {
+        let b = area.region.bounds();
+        let Settings {
+            scale,
+            wobble,
+            hand,
+            pen,
+            follow,
+            branching,
+            ..
+        } = self.settings;
+        let target = Target {
+            region: &area.region,
+            pole: area.pole,
+            radius: area.radius,
+            size: scale * b.area().sqrt(),
+            wobble,
+            pen,
+            follow,
+            branching,
+            black: area.black,
+            tone: self.settings.tone,
+        };
+        let mut drawn = draw(procedure, &target, &self.allowed, rng)?;
+        if hand > 0.0 {
+            for m in &mut drawn.marks {
+                *m = by_hand(m, hand, &mut self.hand)?;
+            }
+        }
+        if self.settings.retrace > 0.0 {
+            drawn = self.retraced(drawn)?;
+        }
+        let composed = compose(&area.region, &drawn.marks, pen, flattening(pen))?;
+        for piece in composed.white {
+            // Inside a white mark: the seed the mark was given. Elsewhere
+            // the piece keeps its region's seed, as its pixels would in the
+            // paper's frame buffer (the blank page's stays "any").
+            let seed = piece.inside.and_then(|i| drawn.seeds[i]).or(area.seed);
+            self.push(piece.region, seed);
+        }
+        Ok(Step {
+            procedure: Some(procedure),
+            strokes: composed.strokes,
+            black: composed.black,
+        })
+    }
+}
+
+/// `mark` bent by a deformation of its own that moves no point more than
+/// about `amount` mm: a 4×4 lattice over its box (grown by `amount`, so a
+/// straight line has a box to bend in) whose control points move up to
+/// `amount`.
+pub(super) fn by_hand(mark: &Mark, amount: f64, rng: &mut RandomStream) -> Result<Mark> {
+    let b = mark.path.bounding_box().inflate(amount, amount);
+    // A control point moves up to rx/2 lattice cells of width/3.
+    let lattice = Lattice::jittered(b, 6.0 * amount / b.width(), 6.0 * amount / b.height(), rng)?;
+    Ok(mark.deformed(&lattice, TOLERANCE))
+}
+
+/// How closely white pieces, black parts and ink follow the curves (mm):
+/// an eighth of the pen's width, far inside the line that covers the
+/// edge, and a quarter of the vertices the output tolerance would take.
+fn flattening(pen: f64) -> f64 {
+    pen / 8.0
+}
+
+/// How exactly a region's widest inscribed circle is found (mm): to a
+/// quarter of the pen, or 0.5 % of the region's smaller side when that is
+/// more — enough to tell which region is widest, and the search costs
+/// grow with the inverse square of it.
+pub(super) fn precision(region: &Region, pen: f64) -> f64 {
+    let b = region.bounds();
+    (pen / 4.0).max(0.005 * b.width().min(b.height()))
+}

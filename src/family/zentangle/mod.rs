@@ -1,0 +1,240 @@
+//! The `zentangle` family (SPEC §2): the filling process of the zentangle
+//! paper in exact vector form (see [`ZentangleSpec`]).
+//!
+//! - `element`: the 26 elements (basic and compound shapes) as marks in
+//!   painter's order, and their hand-drawn deformation;
+//! - `placement`: the placement templates MR, MT, MS, MA, MC and ML of
+//!   symmetric patterns;
+//! - `pattern`: the region-dependent patterns;
+//! - `procedure`: the twenty procedures of the paper's table 1 and their
+//!   seed groups;
+//! - `compose`: what a procedure's marks do to a white region — the
+//!   visible lines, the white pieces left and the black area;
+//! - `filling`: the loop.
+//!
+//! Each step is a group `<layer>.<table>.step-K-pP` (step K drew
+//! procedure P) of its lines (`line-I`) and black parts (`black-I`,
+//! hatched or filled as `black` says); `step-0-lines` holds the
+//! description's own `lines`.
+
+pub(crate) mod description;
+mod compose;
+mod element;
+pub(crate) mod ffd;
+mod filling;
+mod pattern;
+mod placement;
+mod procedure;
+
+use kurbo::{BezPath, Point};
+
+use crate::error::{Error, Result};
+use crate::geom::density::{Density, Formula};
+use crate::geom::region::Region;
+use crate::motif::region::regions;
+use crate::motif::Context;
+use crate::rng::RandomStream;
+use crate::scene::{Color, Group, Style};
+use crate::spec::{Black, ZentangleSpec, ELEMENTS, PROCEDURES};
+use element::Shape;
+use filling::{Filling, Settings, Step};
+use procedure::Allowed;
+
+/// Builds a zentangle fill into a group with id `group_id`.
+///
+/// # Errors
+/// A region that encloses nothing; a manual step whose point lies in no
+/// white region; the path budget.
+pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
+    let regions = regions(&spec.region, cx)?;
+    let mut rng = cx.stream(group_id);
+    let allowed = Allowed {
+        procedures: spec
+            .procedures
+            .clone()
+            .unwrap_or_else(|| (0..PROCEDURES).collect()),
+        elements: spec.elements.as_ref().map_or_else(
+            || Shape::ALL.to_vec(),
+            |names| names.iter().filter_map(|n| Shape::from_name(n)).collect(),
+        ),
+    };
+    debug_assert!(ELEMENTS.iter().all(|n| Shape::from_name(n).is_some()));
+    let lines: Vec<BezPath> = spec.lines.iter().map(|l| polyline(l)).collect();
+    let pen = cx.pen_width();
+    let formula = match spec.tone.as_ref().and_then(|t| t.formula.as_deref()) {
+        Some(text) => Some(Formula::parse(text).map_err(|e| match e {
+            Error::Invalid { message, .. } => Error::invalid(cx.field("tone.formula"), message),
+            other => other,
+        })?),
+        None => None,
+    };
+    let image = match spec.tone.as_ref().and_then(|t| t.image.as_deref()) {
+        Some(name) => Some(cx.library().image(name)?),
+        None => None,
+    };
+    let frame = regions
+        .iter()
+        .map(Region::bounds)
+        .reduce(|a, b| a.union(b))
+        .unwrap_or_default();
+    let mut darkness = Density::new(frame);
+    if let Some(img) = image {
+        darkness = darkness.with_image(img);
+    }
+    if let Some(f) = &formula {
+        darkness = darkness.with_formula(f);
+    }
+    let tone = |p: Point| darkness.at(p);
+    let settings = Settings {
+        scale: spec.scale,
+        smallest: spec.smallest,
+        wobble: spec.wobble,
+        hand: spec.hand,
+        retrace: spec.retrace,
+        pen,
+        follow: spec.follow,
+        branching: spec.branching,
+        tone: spec
+            .tone
+            .as_ref()
+            .map(|t| (&tone as &dyn Fn(Point) -> f64, t.contrast)),
+    };
+    let hand = cx.stream(&format!("{group_id}/hand"));
+    let (mut filling, first) = Filling::new(&regions, lines, allowed, settings, hand)?;
+    if filling.open() == 0 {
+        return Err(Error::invalid(
+            cx.field("region"),
+            format!(
+                "is too small to draw in: no part of it holds a circle of radius `smallest` \
+                 = {} mm",
+                spec.smallest
+            ),
+        ));
+    }
+    let mut group = Group::new(group_id);
+    emit(spec, &mut group, group_id, 0, first, cx)?;
+    // The manual steps chosen for the blank tile, then the loop, then
+    // the manual steps that touch up what the loop left white.
+    let mut steps = Steps {
+        spec,
+        group: &mut group,
+        group_id,
+        k: 0,
+    };
+    steps.by_hand(false, &mut filling, &mut rng, cx)?;
+    for _ in 0..spec.steps {
+        let Some(step) = filling.step(&mut rng)? else {
+            break;
+        };
+        steps.emit(step, cx)?;
+    }
+    steps.by_hand(true, &mut filling, &mut rng, cx)?;
+    let k = steps.k;
+    cx.note(
+        group_id,
+        format!(
+            "{k} steps; {} white regions wide enough to draw in are left",
+            filling.open()
+        ),
+    );
+    Ok(group)
+}
+
+/// The steps of one fill as they are drawn, numbered from 1.
+struct Steps<'s> {
+    spec: &'s ZentangleSpec,
+    group: &'s mut Group,
+    group_id: &'s str,
+    /// The number of the last step drawn.
+    k: usize,
+}
+
+impl Steps<'_> {
+    /// Draws the next step and counts it done.
+    fn emit(&mut self, step: Step, cx: &mut Context<'_>) -> Result<()> {
+        self.k += 1;
+        emit(self.spec, self.group, self.group_id, self.k, step, cx)?;
+        cx.advance(1);
+        Ok(())
+    }
+
+    /// The manual steps run `after` the loop (or before it), each in the
+    /// white region under its point; errors name the step's `at`.
+    fn by_hand(
+        &mut self,
+        after: bool,
+        filling: &mut Filling,
+        rng: &mut RandomStream,
+        cx: &mut Context<'_>,
+    ) -> Result<()> {
+        let spec = self.spec;
+        for (i, m) in spec
+            .manual
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.after == after)
+        {
+            let at = Point::new(m.at[0], m.at[1]);
+            let step = filling.step_at(at, m.procedure, rng).map_err(|e| match e {
+                Error::Invalid { message, .. } => {
+                    Error::invalid(cx.field(&format!("manual[{i}].at")), message)
+                }
+                other => other,
+            })?;
+            self.emit(step, cx)?;
+        }
+        Ok(())
+    }
+}
+
+/// Puts a step's lines and black parts into the group, as `step-K`.
+fn emit(
+    spec: &ZentangleSpec,
+    group: &mut Group,
+    group_id: &str,
+    k: usize,
+    step: Step,
+    cx: &mut Context<'_>,
+) -> Result<()> {
+    if step.strokes.is_empty() && step.black.is_empty() {
+        return Ok(());
+    }
+    let id = match step.procedure {
+        Some(p) => format!("{group_id}.step-{k}-p{p}"),
+        None => format!("{group_id}.step-{k}-lines"),
+    };
+    cx.take_paths(step.strokes.len() + step.black.len(), || {
+        format!("zentangle {id}")
+    })?;
+    let mut part = Group::new(&id);
+    for (i, region) in step.black.into_iter().enumerate() {
+        let style = Style {
+            fill: Some(Color::BLACK),
+            hatch: (spec.black == Black::Hatch).then_some(spec.hatch),
+            fill_only: false,
+            mask: false,
+        };
+        part.push_path(format!("{id}.black-{i}"), region.into_path(), style);
+    }
+    for (i, path) in step.strokes.into_iter().enumerate() {
+        part.push_path(format!("{id}.line-{i}"), path, Style::default());
+    }
+    group.push_group(part);
+    Ok(())
+}
+
+/// A polyline through `points`.
+fn polyline(points: &[[f64; 2]]) -> BezPath {
+    let mut path = BezPath::new();
+    for (i, &[x, y]) in points.iter().enumerate() {
+        if i == 0 {
+            path.move_to((x, y));
+        } else {
+            path.line_to((x, y));
+        }
+    }
+    path
+}
+
+#[cfg(test)]
+mod tests;
