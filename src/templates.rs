@@ -58,6 +58,7 @@ pub const ALL: &[Template] = templates![
     "zentangle-ring",
     "zentangle-geometric",
     "zentangle-voronoi",
+    "wagara",
     "kimono-tangles",
     "delaunay-lowpoly",
     "lsystem-plant-a",

@@ -81,6 +81,11 @@ families! {
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
             vine: many Vine(VineSpec),
         }
+        wagara {
+            /// Traditional grounds (和柄) filling a region as one seamless repeat.
+            #[serde(default, skip_serializing_if = "Vec::is_empty")]
+            wagara: many Wagara(WagaraSpec),
+        }
     }
 }
 

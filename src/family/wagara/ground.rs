@@ -1,0 +1,310 @@
+//! The grounds as strokes over a window of the plane, in the repeat's own
+//! frame (mm, y down): every line as long as the pattern lets it run, each
+//! drawn once.
+//!
+//! * **Kagome**: three sets of parallel lines 120° apart, `scale` apart,
+//!   placed so that no three meet in a point (offsets summing to half the
+//!   spacing): hexagons with a triangle on each side.
+//! * **Asanoha**: the triangle grid of side `scale` (three sets of lines
+//!   through common points), and at every grid point three dashes across
+//!   it, each along the height of the triangles it touches and reaching
+//!   their centres: the corners of each triangle joined to its centre,
+//!   drawn as the straight lines they lie on.
+//! * **Kikkō**: a honeycomb of pointy-topped hexagons of radius `scale`,
+//!   as the zigzags between rows and the upright edges within a row; each
+//!   cell's inner outlines (`lines` − 1) as closed hexagons, a fifth of the
+//!   radius apart.
+//! * **Shippō**: circles of radius `scale` on a square grid of `scale`·√2,
+//!   each crossing its four neighbours at their quarter points.
+//! * **Seigaiha**: fans of `lines` concentric rings of radius up to
+//!   `scale`, in rows `scale`/2 apart, each row shifted by a radius; a row
+//!   in front (further down) hides what of the rows behind it lies under
+//!   its fans, so each ring is drawn as its arcs in sight.
+
+use std::f64::consts::{PI, TAU};
+
+use kurbo::{Arc, BezPath, Circle, Line, Point, Rect, Shape, Vec2};
+
+use crate::spec::Ground;
+
+/// Curves are made within this distance of the true circle, mm.
+const ACCURACY: f64 = 1e-3;
+
+/// The inner outlines of a kikkō cell: each a fifth of the radius inside
+/// the one around it.
+const KIKKO_STEP: f64 = 0.2;
+
+/// The strokes of `ground` that reach into `window`, in the repeat's frame
+/// (the repeat's origin is the frame's).
+pub(super) fn strokes(ground: Ground, scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
+    match ground {
+        Ground::Kagome => kagome(scale, window),
+        Ground::Asanoha => asanoha(scale, window),
+        Ground::Kikko => kikko(scale, lines, window),
+        Ground::Shippo => shippo(scale, window),
+        Ground::Seigaiha => seigaiha(scale, lines, window),
+    }
+}
+
+/// About how many strokes [`strokes`] makes over `window`, never fewer
+/// (for the path budget, taken before the work).
+pub(super) fn estimate(ground: Ground, scale: f64, lines: u32, window: Rect) -> f64 {
+    // Motifs per square `scale` (the pattern's density), and lines
+    // across the window.
+    let per_square = match ground {
+        Ground::Kagome => 0.0,
+        // Three dashes at each grid point (1.15 points per square).
+        Ground::Asanoha => 3.5,
+        // An upright edge and the inner outlines of each cell (0.39 cells
+        // per square).
+        Ground::Kikko => 0.4 * f64::from(lines),
+        // Half a circle per square.
+        Ground::Shippo => 0.5,
+        // One fan per square, each ring in up to three arcs.
+        Ground::Seigaiha => 3.0 * f64::from(lines),
+    };
+    let (w, h) = (window.width() / scale + 2.0, window.height() / scale + 2.0);
+    per_square * w * h + 4.0 * (w + h) + 16.0
+}
+
+/// Lines `p·n = offset + k·spacing` crossing `window`, each cut to it.
+fn parallels(normal: Vec2, spacing: f64, offset: f64, window: Rect) -> Vec<BezPath> {
+    let corners = [
+        Point::new(window.x0, window.y0),
+        Point::new(window.x1, window.y0),
+        Point::new(window.x0, window.y1),
+        Point::new(window.x1, window.y1),
+    ];
+    let (lo, hi) = corners
+        .iter()
+        .map(|c| c.to_vec2().dot(normal))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    let along = Vec2::new(-normal.y, normal.x);
+    let reach = window.width().hypot(window.height());
+    let centre = window.center().to_vec2();
+    let first = ((lo - offset) / spacing).ceil() as i64;
+    let last = ((hi - offset) / spacing).floor() as i64;
+    (first..=last)
+        .map(|k| {
+            let level = offset + k as f64 * spacing;
+            // The point of the line nearest the window's centre.
+            let foot = centre + normal * (level - centre.dot(normal));
+            let line = Line::new(
+                (foot - along * reach).to_point(),
+                (foot + along * reach).to_point(),
+            );
+            let mut path = BezPath::new();
+            path.move_to(line.p0);
+            path.line_to(line.p1);
+            path
+        })
+        .collect()
+}
+
+/// The unit normal at `deg` degrees.
+fn unit(deg: f64) -> Vec2 {
+    Vec2::from_angle(deg.to_radians())
+}
+
+fn kagome(scale: f64, window: Rect) -> Vec<BezPath> {
+    // Offsets 0, 0 and half a spacing: where two lines cross, the third
+    // set's nearest line is half a spacing away, never through the point.
+    [(90.0, 0.0), (210.0, 0.0), (330.0, 0.5 * scale)]
+        .into_iter()
+        .flat_map(|(deg, offset)| parallels(unit(deg), scale, offset, window))
+        .collect()
+}
+
+fn asanoha(scale: f64, window: Rect) -> Vec<BezPath> {
+    let height = scale * 3f64.sqrt() / 2.0;
+    // The grid: lines along 0°, 60° and 120° through common points.
+    let mut strokes: Vec<BezPath> = [90.0, 150.0, 210.0]
+        .into_iter()
+        .flat_map(|deg| parallels(unit(deg), height, 0.0, window))
+        .collect();
+    // Every grid point, with the three dashes across it: from the centre
+    // of a triangle on one side to the centre of the one on the other,
+    // along their heights (the corner is 2/3 of a height from each).
+    let reach = 2.0 / 3.0 * height;
+    let (a, b) = (Vec2::new(scale, 0.0), Vec2::new(0.5 * scale, height));
+    let rows = (window.y0 / height).floor() as i64 - 1..=(window.y1 / height).ceil() as i64 + 1;
+    for j in rows {
+        let shift = j as f64 * b.x;
+        let columns = ((window.x0 - shift) / scale).floor() as i64 - 1
+            ..=((window.x1 - shift) / scale).ceil() as i64 + 1;
+        for i in columns {
+            let p = (a * i as f64 + b * j as f64).to_point();
+            if !window.inflate(reach, reach).contains(p) {
+                continue;
+            }
+            for deg in [30.0, 90.0, 150.0] {
+                let d = unit(deg) * reach;
+                let mut dash = BezPath::new();
+                dash.move_to(p - d);
+                dash.line_to(p + d);
+                strokes.push(dash);
+            }
+        }
+    }
+    strokes
+}
+
+fn kikko(scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
+    let width = scale * 3f64.sqrt();
+    let pitch = 1.5 * scale;
+    let mut strokes = Vec::new();
+    let rows = (window.y0 / pitch).floor() as i64 - 1..=(window.y1 / pitch).ceil() as i64 + 1;
+    let columns = |shift: f64| {
+        ((window.x0 - shift) / width).floor() as i64 - 1
+            ..=((window.x1 - shift) / width).ceil() as i64 + 1
+    };
+    for j in rows {
+        let y = j as f64 * pitch;
+        let shift = if j.rem_euclid(2) == 1 { 0.5 * width } else { 0.0 };
+        // The zigzag above row j: the row's top corners and the corners
+        // between them, shared with the row above.
+        let mut zigzag = BezPath::new();
+        for (n, i) in columns(shift).enumerate() {
+            let x = shift + i as f64 * width;
+            let left = Point::new(x - 0.5 * width, y - 0.5 * scale);
+            let top = Point::new(x, y - scale);
+            if n == 0 {
+                zigzag.move_to(left);
+            } else {
+                zigzag.line_to(left);
+            }
+            zigzag.line_to(top);
+        }
+        strokes.push(zigzag);
+        for i in columns(shift) {
+            let x = shift + i as f64 * width - 0.5 * width;
+            let mut edge = BezPath::new();
+            edge.move_to((x, y - 0.5 * scale));
+            edge.line_to((x, y + 0.5 * scale));
+            strokes.push(edge);
+            let centre = Point::new(x + 0.5 * width, y);
+            for m in 1..lines {
+                strokes.push(hexagon(centre, scale * (1.0 - KIKKO_STEP * f64::from(m))));
+            }
+        }
+    }
+    strokes
+}
+
+/// A closed pointy-topped hexagon.
+fn hexagon(centre: Point, radius: f64) -> BezPath {
+    let mut path = BezPath::new();
+    for k in 0..6 {
+        let corner = centre + Vec2::from_angle(PI / 6.0 + f64::from(k) * PI / 3.0) * radius;
+        if k == 0 {
+            path.move_to(corner);
+        } else {
+            path.line_to(corner);
+        }
+    }
+    path.close_path();
+    path
+}
+
+fn shippo(scale: f64, window: Rect) -> Vec<BezPath> {
+    let step = scale * 2f64.sqrt();
+    let grid = |lo: f64, hi: f64| (lo / step).floor() as i64 - 1..=(hi / step).ceil() as i64 + 1;
+    let mut strokes = Vec::new();
+    for j in grid(window.y0, window.y1) {
+        for i in grid(window.x0, window.x1) {
+            let centre = Point::new(i as f64 * step, j as f64 * step);
+            if window.inflate(scale, scale).contains(centre) {
+                strokes.push(Circle::new(centre, scale).to_path(ACCURACY));
+            }
+        }
+    }
+    strokes
+}
+
+fn seigaiha(scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
+    let pitch = 0.5 * scale;
+    let fan = |i: i64, j: i64| {
+        let shift = if j.rem_euclid(2) == 1 { scale } else { 0.0 };
+        Point::new(shift + i as f64 * 2.0 * scale, j as f64 * pitch)
+    };
+    let mut strokes = Vec::new();
+    let rows = (window.y0 / pitch).floor() as i64 - 1..=(window.y1 / pitch).ceil() as i64 + 4;
+    for j in rows {
+        let shift = if j.rem_euclid(2) == 1 { scale } else { 0.0 };
+        let columns = ((window.x0 - shift) / (2.0 * scale)).floor() as i64 - 1
+            ..=((window.x1 - shift) / (2.0 * scale)).ceil() as i64 + 1;
+        for i in columns {
+            let centre = fan(i, j);
+            if !window.inflate(scale, scale).contains(centre) {
+                continue;
+            }
+            // The fans in front that reach this one: the next four rows,
+            // within two radii.
+            let front: Vec<Point> = (1..=4)
+                .flat_map(|dj| (-2..=2).map(move |di| (di, dj)))
+                .map(|(di, dj)| fan(i + di, j + dj))
+                .filter(|c| c.distance(centre) < 2.0 * scale)
+                .collect();
+            for k in 0..lines {
+                let radius = scale * f64::from(lines - k) / f64::from(lines);
+                for (start, sweep) in in_sight(centre, radius, &front, scale) {
+                    let arc = Arc::new(centre, (radius, radius), start, sweep, 0.0);
+                    strokes.push(arc.to_path(ACCURACY));
+                }
+            }
+        }
+    }
+    strokes
+}
+
+/// The arcs of the circle (`centre`, `radius`) outside every disc of
+/// radius `cover` about `front`, as `(start angle, sweep)` in radians.
+fn in_sight(centre: Point, radius: f64, front: &[Point], cover: f64) -> Vec<(f64, f64)> {
+    // The hidden angles, as intervals from 0 up to 2π (split where they
+    // wrap round).
+    let mut hidden: Vec<(f64, f64)> = Vec::new();
+    for &d in front {
+        let dist = d.distance(centre);
+        if dist + radius <= cover {
+            return Vec::new();
+        }
+        if dist >= radius + cover || dist < 1e-12 {
+            continue;
+        }
+        let towards = (d - centre).atan2();
+        let half = ((radius * radius + dist * dist - cover * cover) / (2.0 * radius * dist))
+            .clamp(-1.0, 1.0)
+            .acos();
+        let (a, b) = ((towards - half).rem_euclid(TAU), (towards + half).rem_euclid(TAU));
+        if a <= b {
+            hidden.push((a, b));
+        } else {
+            hidden.push((a, TAU));
+            hidden.push((0.0, b));
+        }
+    }
+    hidden.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let mut seen = Vec::new();
+    let mut at = 0.0;
+    for (a, b) in hidden {
+        if a > at {
+            seen.push((at, a - at));
+        }
+        at = f64::max(at, b);
+    }
+    if at < TAU {
+        seen.push((at, TAU - at));
+    }
+    // An arc through angle 0 is one arc, not two.
+    if seen.len() > 1 {
+        let (first, last) = (seen[0], seen[seen.len() - 1]);
+        if first.0 == 0.0 && last.0 + last.1 >= TAU {
+            seen.pop();
+            seen[0] = (last.0 - TAU, last.1 + first.1);
+        }
+    }
+    seen.retain(|&(_, sweep)| sweep * radius > 1e-6);
+    seen
+}

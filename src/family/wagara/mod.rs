@@ -1,0 +1,78 @@
+//! The `wagara` family: a traditional ground (和柄) over a region, drawn
+//! as one seamless repeat — no tile frame, no seam, every line drawn once
+//! and as long as the pattern lets it run (see `ground`).
+//!
+//! The repeat is laid out in its own frame (origin at the region's centre
+//! plus `offset`, turned by `angle`) over the region's box, then mapped
+//! onto the page and clipped to the region exactly. Ids:
+//! `<layer>.<ground>.<pattern>.stroke-<i>` (`front.waves.seigaiha.stroke-3`),
+//! so `[[adjust]]` can hide or move one stroke, and
+//! `<layer>.<ground>.<pattern>.outline` for the region's edge.
+
+pub(crate) mod description;
+mod ground;
+
+#[cfg(test)]
+mod tests;
+
+use kurbo::{Affine, Vec2};
+
+use crate::error::Result;
+use crate::geom::clip::StrokeClipper;
+use crate::geom::TOLERANCE;
+use crate::motif::adjust::about;
+use crate::motif::region::region;
+use crate::motif::Context;
+use crate::scene::{Group, Style};
+use crate::spec::WagaraSpec;
+
+/// Builds the ground into a group with id `group_id`.
+///
+/// # Errors
+/// A region that encloses nothing; more strokes than the path budget
+/// allows (found before they are made); an SVG region file that was not
+/// loaded; an adjustment that does not fit a stroke.
+pub(super) fn build(spec: &WagaraSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
+    let region = region(&spec.region, cx)?;
+    let bounds = region.bounds();
+    let place = Affine::translate(bounds.center().to_vec2() + Vec2::new(spec.offset[0], spec.offset[1]))
+        * Affine::rotate(spec.angle.to_radians());
+    // The region's box seen from the repeat's frame, a repeat to spare.
+    let window = place
+        .inverse()
+        .transform_rect_bbox(bounds)
+        .inflate(spec.scale, spec.scale);
+    let name = spec.pattern.name();
+    let lines = spec.line_count();
+    let what = || format!("wagara {group_id} ({name} at scale {} mm)", spec.scale);
+    // A ground too fine for its region fails here, before the work.
+    let estimate = ground::estimate(spec.pattern, spec.scale, lines, window);
+    cx.budget()
+        .clone()
+        .take(estimate.min(usize::MAX as f64) as usize, what)?;
+    let clipper = StrokeClipper::new(&region, TOLERANCE);
+    let strokes: Vec<_> = ground::strokes(spec.pattern, spec.scale, lines, window)
+        .into_iter()
+        .flat_map(|stroke| clipper.clip(&(place * stroke)).inside)
+        .collect();
+    cx.take_paths(strokes.len(), what)?;
+    let id = format!("{group_id}.{name}");
+    let mut part = Group::new(&id);
+    for (i, path) in strokes.into_iter().enumerate() {
+        let path_id = format!("{id}.stroke-{i}");
+        let adjusted = cx.adjust().take_without_motif(&path_id, "a wagara stroke")?;
+        if adjusted.is_some_and(|a| a.hide) {
+            continue;
+        }
+        let path = about(adjusted, kurbo::Shape::bounding_box(&path).center()) * path;
+        part.push_path(path_id, path, Style::default());
+    }
+    if spec.outline {
+        cx.take_paths(1, what)?;
+        part.push_path(format!("{id}.outline"), region.into_path(), Style::default());
+    }
+    let mut group = Group::new(group_id);
+    group.push_group(part);
+    cx.advance(1);
+    Ok(group)
+}
