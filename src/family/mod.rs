@@ -16,6 +16,8 @@
 //! loading and [`build`] all go through. Adding a family is a folder, a
 //! registry line and a template (docs/ARCHITECTURE.md has the recipe).
 
+#[cfg(feature = "studio")]
+pub(crate) mod gesture;
 pub(crate) mod registry;
 
 use kurbo::Point;
@@ -151,6 +153,12 @@ pub(crate) trait Family {
     /// tables of later layers.
     fn offers_regions(&self) -> bool {
         false
+    }
+
+    /// What it offers the studio's gestures, if anything.
+    #[cfg(feature = "studio")]
+    fn gestures(&self) -> Option<&dyn gesture::Gestures> {
+        None
     }
 }
 

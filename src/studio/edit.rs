@@ -176,35 +176,6 @@ pub(crate) fn table_index(field: &str, family: &str) -> Option<(usize, usize)> {
     }
 }
 
-/// `v` to a tenth (of a millimetre, of a degree): what a gesture writes,
-/// finer than a hand places anything.
-pub(crate) fn tenth(v: f64) -> f64 {
-    (v * 10.0).round() / 10.0
-}
-
-/// Points as a TOML list, a few to a line when there are many (a stroke,
-/// a table's sites), so that the description stays readable.
-pub(crate) fn point_list(points: &[[f64; 2]]) -> Array {
-    const PER_LINE: usize = 6;
-    let mut list = Array::new();
-    for (i, &[x, y]) in points.iter().enumerate() {
-        let mut pair = Array::new();
-        pair.push(x);
-        pair.push(y);
-        let mut pair = Value::Array(pair);
-        if points.len() > PER_LINE {
-            let prefix = if i % PER_LINE == 0 { "\n  " } else { " " };
-            pair.decor_mut().set_prefix(prefix);
-        }
-        list.push_formatted(pair);
-    }
-    if points.len() > PER_LINE {
-        list.set_trailing_comma(true);
-        list.set_trailing("\n");
-    }
-    list
-}
-
 /// Runs `op` where `steps` lead below a table (`[x]` or `{ … }`).
 fn in_table(
     table: &mut dyn TableLike,

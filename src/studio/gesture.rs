@@ -4,8 +4,11 @@
 //! Voronoi table's sites are pinned (written as its `points`, which the
 //! page then drags as handles), a tree, flower, leaf or plant dragged,
 //! turned, scaled or hidden becomes its `[[adjust]]`, a vine's camera
-//! turned round it becomes its `camera = { turn, tilt }`. What each family
-//! offers to a gesture is listed by `GET /api/targets`.
+//! turned round it becomes its `camera = { turn, tilt }`. What each table
+//! offers to a gesture, and what the gesture writes, is its family's
+//! (`crate::family::gesture`); this module routes the gestures to the
+//! tables they name and lists the tables that offer each by
+//! `GET /api/targets`.
 
 use axum::extract::State;
 use axum::http::StatusCode;
@@ -16,11 +19,13 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 
 use super::api::{apply, changed, failure, nothing_rendered, App};
-use super::edit::{point_list, table_index, tenth, Edit};
+use super::edit::table_index;
+use super::edit::Edit;
 use super::pen::{Stroke, Target};
 use super::session::Move;
 use crate::error::Error;
-use crate::spec::Table;
+use crate::family::gesture::{tenth, Change, Gesture, Gestures};
+use crate::spec::SceneSpec;
 
 /// The gestures' routes.
 pub(super) fn routes() -> Router<App> {
@@ -36,19 +41,19 @@ pub(super) fn routes() -> Router<App> {
 }
 
 /// What the gestures can work on in the last good design: the layers (a
-/// new sketch goes in one), the sketch tables, the zentangle fills, the
-/// Voronoi tables (pinned or not) and the vines (whether their camera
-/// turns).
+/// new sketch goes in one) and, for each gesture, the tables that offer
+/// it with what the page shows of each (whether a Voronoi table is
+/// pinned, whether a vine's camera turns).
 async fn targets(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
     let spec = good.spec.spec();
     let scene = &good.rendered.scene;
-    let mut sketch = Vec::new();
-    let mut zentangle = Vec::new();
-    let mut voronoi = Vec::new();
-    let mut vine = Vec::new();
+    let mut lists = serde_json::Map::new();
+    for gesture in Gesture::ALL {
+        lists.insert(gesture.list().into(), Value::Array(Vec::new()));
+    }
     let layers: Vec<Value> = spec
         .layers
         .iter()
@@ -56,41 +61,61 @@ async fn targets(State(app): State<App>) -> Response {
         .map(|(l, layer)| {
             let layer_id = scene.layers.get(l).map_or("", |s| s.id.as_str());
             for item in layer.items() {
-                let target = json!({
-                    "field": format!("layers[{l}].{}", item.field),
-                    "label": format!("{} · {}", layer.name, item.id),
-                    // The group the table's drawing is in the preview.
-                    "group": format!("{layer_id}.{}", item.id),
-                });
-                match item.table {
-                    Table::LSystem(t) if t.sketch.is_some() => sketch.push(target),
-                    Table::Zentangle(_) => zentangle.push(target),
-                    Table::Voronoi(v) => {
-                        let mut target = target;
-                        target["pinned"] = v.sites.points.is_some().into();
-                        voronoi.push(target);
+                let Some(gestures) = item.table.family().gestures() else {
+                    continue;
+                };
+                for (gesture, facts) in gestures.offers() {
+                    let mut target = json!({
+                        "field": format!("layers[{l}].{}", item.field),
+                        "label": format!("{} · {}", layer.name, item.id),
+                        // The group the table's drawing is in the preview.
+                        "group": format!("{layer_id}.{}", item.id),
+                    });
+                    if let (Some(target), Value::Object(facts)) = (target.as_object_mut(), facts) {
+                        target.extend(facts);
                     }
-                    Table::Vine(v) => {
-                        let mut target = target;
-                        // "below" and placed perspective cameras do not
-                        // turn: the page says so rather than jump.
-                        target["orbits"] = v.camera.orbit().is_some().into();
-                        vine.push(target);
+                    if let Some(Value::Array(list)) = lists.get_mut(gesture.list()) {
+                        list.push(target);
                     }
-                    _ => {}
                 }
             }
             json!({"index": l, "name": layer.name})
         })
         .collect();
-    Json(json!({
-        "layers": layers,
-        "sketch": sketch,
-        "zentangle": zentangle,
-        "voronoi": voronoi,
-        "vine": vine,
-    }))
-    .into_response()
+    lists.insert("layers".into(), Value::Array(layers));
+    Json(Value::Object(lists)).into_response()
+}
+
+/// The table at `field` (`layers[0].zentangle[1]`) of `spec` when it
+/// offers `gesture`.
+fn offering<'a>(spec: &'a SceneSpec, field: &str, gesture: Gesture) -> Option<&'a dyn Gestures> {
+    spec.layers.iter().enumerate().find_map(|(l, layer)| {
+        layer
+            .items()
+            .into_iter()
+            .find(|item| format!("layers[{l}].{}", item.field) == field)
+            .and_then(|item| item.table.family().gestures())
+            .filter(|g| g.offers().iter().any(|(o, _)| *o == gesture))
+    })
+}
+
+/// The description `text` with `changes` made, as one edit.
+pub(super) fn changed_text(text: &str, changes: Vec<Change>) -> Result<String, Error> {
+    let mut edit = Edit::parse(text)?;
+    for change in changes {
+        match change {
+            Change::Set(field, value) => edit.set(&field, value)?,
+            Change::Remove(field) => edit.remove(&field)?,
+            Change::Push {
+                field,
+                table,
+                inline,
+            } => {
+                edit.push_table(&field, table, inline)?;
+            }
+        }
+    }
+    Ok(edit.text())
 }
 
 #[derive(Deserialize)]
@@ -219,9 +244,7 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let table = table_index(&click.target, "zentangle")
-        .and_then(|(l, t)| good.spec.spec().layers.get(l)?.zentangle.get(t));
-    let Some(table) = table else {
+    let Some(table) = offering(good.spec.spec(), &click.target, Gesture::Fill) else {
         return failure(&Error::invalid(
             &click.target,
             "is not a zentangle fill of the design",
@@ -231,19 +254,9 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
     if !(x.is_finite() && y.is_finite()) {
         return failure(&Error::invalid("at", "the click is not a finite point"));
     }
-    let mut step = toml_edit::Table::new();
-    let mut at = toml_edit::Array::new();
-    at.push(tenth(x));
-    at.push(tenth(y));
-    step.insert("at", toml_edit::value(at));
-    step.insert("procedure", toml_edit::value(i64::from(click.procedure)));
-    if table.steps > 0 {
-        step.insert("after", toml_edit::value(true));
-    }
-    let text = Edit::parse(&good.text).and_then(|mut edit| {
-        edit.push_table(&format!("{}.manual", click.target), step, true)?;
-        Ok(edit.text())
-    });
+    let text = table
+        .click(&click.target, click.at, click.procedure)
+        .and_then(|changes| changed_text(&good.text, changes));
     write(&app, text).await
 }
 
@@ -263,13 +276,9 @@ async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let Some((l, t)) = table_index(&pin.target, "voronoi").filter(|&(l, t)| {
-        good.spec
-            .spec()
-            .layers
-            .get(l)
-            .is_some_and(|x| x.voronoi.len() > t)
-    }) else {
+    let place = table_index(&pin.target, "voronoi")
+        .filter(|_| offering(good.spec.spec(), &pin.target, Gesture::Pin).is_some());
+    let Some((l, t)) = place else {
         return failure(&Error::invalid(
             &pin.target,
             "is not a Voronoi table of the design",
@@ -280,63 +289,37 @@ async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
         let good = std::sync::Arc::clone(&good);
         tokio::task::spawn_blocking(move || {
             let spec = good.spec.spec();
-            let points = crate::project::voronoi_sites(&good.spec, &good.library, l, t)?;
-            let mut same = Vec::new();
+            let sites = crate::project::voronoi_sites(&good.spec, &good.library, l, t)?;
+            let target = offering(spec, &pin.target, Gesture::Pin)
+                .ok_or_else(|| Error::invalid(&pin.target, "is not a Voronoi table"))?;
+            let mut changes = Vec::new();
             for (ol, layer) in spec.layers.iter().enumerate() {
-                for (ot, other) in layer.voronoi.iter().enumerate() {
-                    let twin = (ol, ot) == (l, t)
-                        || (other.id.is_some()
-                            && other.id == spec.layers[l].voronoi[t].id
-                            && other.sites.points.is_none()
-                            && crate::project::voronoi_sites(&good.spec, &good.library, ol, ot)
-                                .is_ok_and(|p| p == points));
+                for item in layer.items() {
+                    let field = format!("layers[{ol}].{}", item.field);
+                    let Some(other) = offering(spec, &field, Gesture::Pin) else {
+                        continue;
+                    };
+                    let twin = field == pin.target
+                        || (other.pin_key().is_some()
+                            && other.pin_key() == target.pin_key()
+                            && !other.is_pinned()
+                            && table_index(&field, "voronoi").is_some_and(|(ol, ot)| {
+                                crate::project::voronoi_sites(&good.spec, &good.library, ol, ot)
+                                    .is_ok_and(|p| p == sites)
+                            }));
                     if twin {
-                        same.push((
-                            format!("layers[{ol}].voronoi[{ot}]"),
-                            other.pinned(points.clone()).sites,
-                        ));
+                        changes.extend(other.pin(&field, &sites)?);
                     }
                 }
             }
-            Ok::<_, Error>((points, same))
+            changed_text(&good.text, changes)
         })
     };
-    let (points, same) = match work.await {
-        Ok(Ok(found)) => found,
-        Ok(Err(e)) => return failure(&e),
+    let text = match work.await {
+        Ok(text) => text,
         Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
     };
-    let text = Edit::parse(&good.text).and_then(|mut edit| {
-        for (table, pinned) in &same {
-            let sites = format!("{table}.sites");
-            // The sites' keys as they will be: each kept, set or removed.
-            let now =
-                toml::Value::try_from(pinned).map_err(|e| Error::invalid(&sites, e.to_string()))?;
-            for key in [
-                "distribution",
-                "count",
-                "spacing",
-                "jitter",
-                "image",
-                "density",
-            ] {
-                match now.get(key) {
-                    Some(v) => edit.set(&format!("{sites}.{key}"), toml_value(v)?)?,
-                    None => edit.remove(&format!("{sites}.{key}"))?,
-                }
-            }
-            edit.set(&format!("{sites}.points"), point_list(&points))?;
-        }
-        Ok(edit.text())
-    });
     write(&app, text).await
-}
-
-/// A plain TOML value (a number, a string) as an editable one.
-fn toml_value(v: &toml::Value) -> Result<toml_edit::Value, Error> {
-    v.to_string()
-        .parse()
-        .map_err(|e: toml_edit::TomlError| Error::invalid("studio", e.to_string()))
 }
 
 #[derive(Deserialize)]
@@ -442,32 +425,14 @@ async fn orbit(State(app): State<App>, Json(change): Json<Turn>) -> Response {
     if !(change.turn.is_finite() && change.tilt.is_finite()) {
         return failure(&Error::invalid("turn", "the turn is not a finite number"));
     }
-    let table = table_index(&change.target, "vine")
-        .and_then(|(l, t)| good.spec.spec().layers.get(l)?.vine.get(t));
-    let Some(table) = table else {
+    let Some(table) = offering(good.spec.spec(), &change.target, Gesture::Orbit) else {
         return failure(&Error::invalid(
             &change.target,
             "is not a vine of the design",
         ));
     };
-    let field = format!("{}.camera", change.target);
-    let Some(now) = table.camera.orbit() else {
-        return failure(&Error::invalid(
-            &field,
-            "this camera does not turn round the vine (\"below\" and perspective cameras              placed by hand): give camera = { turn = 0, tilt = 10 } to turn it",
-        ));
-    };
-    let turn = tenth(180.0 - (180.0 - (now.turn + change.turn)).rem_euclid(360.0));
-    let tilt = tenth((now.tilt + change.tilt).clamp(-89.0, 89.0));
-    let mut camera = toml_edit::InlineTable::new();
-    camera.insert("turn", turn.into());
-    camera.insert("tilt", tilt.into());
-    if let Some(fov) = now.perspective {
-        camera.insert("perspective", fov.into());
-    }
-    let text = Edit::parse(&good.text).and_then(|mut edit| {
-        edit.set(&field, camera)?;
-        Ok(edit.text())
-    });
+    let text = table
+        .turn(&change.target, change.turn, change.tilt)
+        .and_then(|changes| changed_text(&good.text, changes));
     write(&app, text).await
 }

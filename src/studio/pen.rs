@@ -11,11 +11,14 @@
 
 use glam::DVec2;
 use kurbo::BezPath;
-use toml_edit::{Array, Table};
+use toml_edit::Array;
 
-use super::edit::{point_list, table_index, tenth, Edit};
+use super::edit::table_index;
+use super::gesture::changed_text;
 use super::session::Good;
 use crate::error::{Error, Result};
+use crate::family::gesture::{point_list, tenth, Change, Gestures};
+use crate::family::lsystem::gesture::new_sketch;
 use crate::family::lsystem::GrowingSketch;
 use crate::output::write_path_data;
 use crate::spec::LSystemSpec;
@@ -24,22 +27,6 @@ use crate::spec::LSystemSpec;
 /// left out: finer than a pen draws, and they would only lengthen the
 /// description.
 pub(crate) const MIN_GAP: f64 = 0.5;
-
-/// The table a stroke that starts a sketch of its own writes (in the
-/// layer it was drawn for): the stroke as straight lines, grown by the
-/// paper's rules and drawn as one outline, as the sketch templates are.
-fn new_table(id: &str, points: Array) -> Table {
-    let mut sketch = Table::new();
-    sketch.insert("points", toml_edit::value(points));
-    sketch.insert("smooth", toml_edit::value(false));
-    sketch.insert("module", toml_edit::value(8));
-    sketch.insert("width", toml_edit::value(2));
-    let mut table = Table::new();
-    table.insert("id", toml_edit::value(id));
-    table.insert("style", toml_edit::value("outline"));
-    table.insert("sketch", toml_edit::Item::Table(sketch));
-    table
-}
 
 /// Decimals of the live drawing's path data.
 const PRECISION: u8 = 2;
@@ -57,6 +44,8 @@ pub(crate) enum Target {
 /// A stroke being drawn.
 pub(crate) struct Stroke {
     target: Target,
+    /// The sketch table it goes into (as it will be, for a new one).
+    table: LSystemSpec,
     growing: GrowingSketch,
     points: Vec<[f64; 2]>,
     /// The colour and width of the pen that will draw it.
@@ -105,7 +94,8 @@ impl Stroke {
                         "the design has no such layer",
                     ));
                 }
-                let text = toml_edit::DocumentMut::from(new_table("new", Array::new())).to_string();
+                let text =
+                    toml_edit::DocumentMut::from(new_sketch("new", Array::new())).to_string();
                 let table: LSystemSpec =
                     toml::from_str(&text).map_err(|e| Error::invalid("studio", e.to_string()))?;
                 (table, *layer, format!("layers[{layer}].lsystem[new]"))
@@ -128,6 +118,7 @@ impl Stroke {
             points: Vec::new(),
             pen,
             outline: table.style == crate::spec::LimbStyle::Outline,
+            table,
         };
         let mut growth = stroke.extend(&[at])?;
         // The page clears what an earlier stroke left.
@@ -184,23 +175,15 @@ impl Stroke {
                 format!("the stroke has no length: draw further than {MIN_GAP} mm"),
             ));
         }
-        let points = point_list(&self.points);
-        let mut edit = Edit::parse(text)?;
-        match &self.target {
-            Target::Table(field) => {
-                let sketch = format!("{field}.sketch");
-                for key in ["svg", "line"] {
-                    edit.remove(&format!("{sketch}.{key}"))?;
-                }
-                edit.set(&format!("{sketch}.smooth"), false)?;
-                edit.set(&format!("{sketch}.points"), points)?;
-            }
-            Target::New(layer) => {
-                let table = new_table(&self.new_id(text, *layer), points.clone());
-                edit.push_table(&format!("layers[{layer}].lsystem"), table, false)?;
-            }
-        }
-        Ok(edit.text())
+        let changes = match &self.target {
+            Target::Table(field) => self.table.stroke(field, &self.points)?,
+            Target::New(layer) => vec![Change::Push {
+                field: format!("layers[{layer}].lsystem"),
+                table: new_sketch(&self.new_id(text, *layer), point_list(&self.points)),
+                inline: false,
+            }],
+        };
+        changed_text(text, changes)
     }
 
     /// An id for a new sketch that no table of the layer has.

@@ -26,6 +26,8 @@
 //! `…flower-<i>` and `…leaf-<i>`.
 
 pub(crate) mod description;
+#[cfg(feature = "studio")]
+pub(crate) mod gesture;
 mod draw;
 pub mod engine;
 mod growing;

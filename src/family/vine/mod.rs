@@ -37,6 +37,8 @@
 //! path each (its visible pieces as subpaths).
 
 pub(crate) mod description;
+#[cfg(feature = "studio")]
+mod gesture;
 pub(crate) mod camera;
 mod ears;
 pub mod engine;

@@ -460,6 +460,11 @@ impl VoronoiSpec {
 }
 
 impl Family for VoronoiSpec {
+    #[cfg(feature = "studio")]
+    fn gestures(&self) -> Option<&dyn crate::family::gesture::Gestures> {
+        Some(self)
+    }
+
     fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
         super::build(self, group_id, cx)
     }

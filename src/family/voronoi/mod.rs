@@ -21,6 +21,8 @@
 //! - `tour`: one pen-down line through every site.
 
 pub(crate) mod description;
+#[cfg(feature = "studio")]
+mod gesture;
 mod dot;
 
 use std::collections::BTreeMap;

@@ -249,6 +249,11 @@ impl Default for ZentangleSpec {
 }
 
 impl Family for ZentangleSpec {
+    #[cfg(feature = "studio")]
+    fn gestures(&self) -> Option<&dyn crate::family::gesture::Gestures> {
+        Some(self)
+    }
+
     fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
         super::build(self, group_id, cx)
     }

@@ -18,6 +18,8 @@
 //! description's own `lines`.
 
 pub(crate) mod description;
+#[cfg(feature = "studio")]
+mod gesture;
 mod compose;
 mod element;
 pub(crate) mod ffd;
