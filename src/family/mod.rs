@@ -53,40 +53,40 @@ families! {
         kimono {
             /// Tree sets, each along its own centre line.
             #[serde(default)]
-            trees: many Trees(TreeSetSpec),
+            trees: many Trees(TreeSetSpec) by tree_set,
             /// A background pattern composited into a mask (SPEC §1.6).
             #[serde(default, skip_serializing_if = "Option::is_none")]
-            background: one Background(BackgroundSpec),
+            background: one Background(BackgroundSpec) by background::background,
         }
         paths {
             /// User paths and point lists, placed and repeated.
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
-            paths: many Paths(PathsSpec),
+            paths: many Paths(PathsSpec) by build,
         }
         voronoi {
             /// Voronoi and Delaunay patterns inside a region.
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
-            voronoi: many Voronoi(VoronoiSpec),
+            voronoi: many Voronoi(VoronoiSpec) by build,
         }
         zentangle {
             /// Zentangle fills inside a region.
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
-            zentangle: many Zentangle(ZentangleSpec),
+            zentangle: many Zentangle(ZentangleSpec) by build,
         }
         lsystem {
             /// L-systems: rules drawn by a turtle, or grown along a stroke.
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
-            lsystem: many LSystem(LSystemSpec),
+            lsystem: many LSystem(LSystemSpec) by build,
         }
         vine {
             /// Twining vines grown round their supports in 3D.
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
-            vine: many Vine(VineSpec),
+            vine: many Vine(VineSpec) by build,
         }
         wagara {
             /// Traditional grounds (和柄) filling a region as one seamless repeat.
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
-            wagara: many Wagara(WagaraSpec),
+            wagara: many Wagara(WagaraSpec) by build,
         }
     }
 }
@@ -102,16 +102,6 @@ pub(crate) trait Family {
     /// # Errors
     /// [`crate::Error::Invalid`] naming the field below `field`.
     fn check(&self, field: &str) -> Result<()>;
-
-    /// Draws the table into one group with id `group_id`
-    /// (`<layer>.<item id>`): ids below it, randomness from
-    /// `cx.stream(id)`, paths taken from the budget before the work.
-    ///
-    /// # Errors
-    /// What the generator reports: the path budget running out, an
-    /// adjustment that does not fit what it addresses, a user motif
-    /// missing from the library.
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group>;
 
     /// Units of work the table makes, for progress reports (a tree, a
     /// cell, a plant …); the generator reports them as it goes.
@@ -178,13 +168,12 @@ pub struct LayerItem<'a> {
 /// `<layer>.<item id>`, and counts its declared work as done.
 ///
 /// # Errors
-/// What the family's generator reports (see [`Family::build`]).
+/// What the family's generator reports (see `Table::draw`).
 pub(crate) fn build(item: &LayerItem<'_>, cx: &mut Context<'_>) -> Result<Group> {
     let id = format!("{}.{}", cx.layer_id(), item.id);
-    let family = item.table.family();
-    let done = cx.done() + family.work();
+    let done = cx.done() + item.table.family().work();
     cx.enter_item(&item.field);
-    let group = family.build(&id, cx)?;
+    let group = item.table.draw(&id, cx)?;
     cx.advance_to(done);
     Ok(group)
 }

@@ -12,7 +12,9 @@
 /// which `crate::spec` re-exports).
 ///
 /// A family is a module (`family/<name>/`, with its tables in
-/// `description.rs`) and its tables. A table is `one` (an optional single
+/// `description.rs`) and its tables, each with the generator that draws
+/// it (`by build`: a function of the module taking the table, the group
+/// id and the context). A table is `one` (an optional single
 /// table, `[layers.NAME]`, id and field `NAME`) or `many` (an array,
 /// `[[layers.NAME]]`, ids `NAME-K` unless the table names its own `id`,
 /// fields `NAME[K]`). Paint order: the `one` tables (behind), then the
@@ -28,7 +30,8 @@ macro_rules! families {
                 $module:ident {
                     $(
                         $(#[$meta:meta])*
-                        $field:ident: $kind:ident $variant:ident($spec:ident),
+                        $field:ident: $kind:ident $variant:ident($spec:ident)
+                            by $($build:ident)::+,
                     )*
                 }
             )*
@@ -65,6 +68,25 @@ macro_rules! families {
             pub(crate) fn family(self) -> &'a dyn $crate::family::Family {
                 match self {
                     $( $( Table::$variant(t) => t, )* )*
+                }
+            }
+
+            /// Draws the table into one group with id `group_id`
+            /// (`<layer>.<item id>`), by its family's generator: ids
+            /// below it, randomness from `cx.stream(id)`, paths taken
+            /// from the budget before the work.
+            ///
+            /// # Errors
+            /// What the generator reports: the path budget running out,
+            /// an adjustment that does not fit what it addresses, a user
+            /// motif missing from the library.
+            pub(crate) fn draw(
+                self,
+                group_id: &str,
+                cx: &mut $crate::motif::Context<'_>,
+            ) -> $crate::error::Result<$crate::scene::Group> {
+                match self {
+                    $( $( Table::$variant(t) => $module::$($build)::+(t, group_id, cx), )* )*
                 }
             }
 

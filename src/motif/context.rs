@@ -60,7 +60,7 @@ pub(crate) struct Context<'a> {
     /// The field path of the table being built, below its layer.
     item: String,
     budget: PathBudget,
-    cancel: &'a crate::project::Cancel,
+    cancel: &'a crate::cancel::Cancel,
     adjust: Adjustments<'a>,
     progress: Progress,
     report: &'a mut dyn FnMut(Progress),
@@ -97,7 +97,7 @@ impl<'a> Context<'a> {
             layer: None,
             item: String::new(),
             budget: PathBudget::new(spec.limits.max_paths).with_segments(spec.limits.max_segments),
-            cancel: crate::project::Cancel::never(),
+            cancel: crate::cancel::Cancel::never(),
             adjust: Adjustments::new(&spec.adjust),
             progress: Progress { done: 0, total },
             report,
@@ -224,7 +224,7 @@ impl<'a> Context<'a> {
     }
 
     /// The same context, called off when `cancel` is raised.
-    pub(crate) fn with_cancel(self, cancel: &'a crate::project::Cancel) -> Context<'a> {
+    pub(crate) fn with_cancel(self, cancel: &'a crate::cancel::Cancel) -> Context<'a> {
         Context { cancel, ..self }
     }
 

@@ -5,6 +5,7 @@
 use toml_edit::{Array, ArrayOfTables, DocumentMut, Item, Table, TableLike, Value};
 
 use crate::error::{Error, Result};
+use crate::family::gesture::Change;
 use crate::spec::field::{steps, Step};
 
 /// A description's TOML being changed in place: values set, removed and
@@ -40,6 +41,30 @@ impl Edit {
     /// The text as changed.
     pub(crate) fn text(&self) -> String {
         self.doc.to_string()
+    }
+
+    /// The description `text` with a gesture's `changes` made, as one
+    /// edit.
+    ///
+    /// # Errors
+    /// As [`Edit::parse`], and a change whose field does not lead to a
+    /// place in the text.
+    pub(crate) fn with_changes(text: &str, changes: Vec<Change>) -> Result<String> {
+        let mut edit = Edit::parse(text)?;
+        for change in changes {
+            match change {
+                Change::Set(field, value) => edit.set(&field, value)?,
+                Change::Remove(field) => edit.remove(&field)?,
+                Change::Push {
+                    field,
+                    table,
+                    inline,
+                } => {
+                    edit.push_table(&field, table, inline)?;
+                }
+            }
+        }
+        Ok(edit.text())
     }
 
     /// Runs `op` where `field` leads. Tables on the way that the text

@@ -24,7 +24,7 @@ use super::edit::Edit;
 use super::pen::{Stroke, Target};
 use super::session::Move;
 use crate::error::Error;
-use crate::family::gesture::{tenth, Change, Gesture, Gestures};
+use crate::family::gesture::{tenth, Gesture, Gestures};
 use crate::spec::SceneSpec;
 
 /// The gestures' routes.
@@ -97,25 +97,6 @@ fn offering<'a>(spec: &'a SceneSpec, field: &str, gesture: Gesture) -> Option<&'
             .and_then(|item| item.table.family().gestures())
             .filter(|g| g.offers().iter().any(|(o, _)| *o == gesture))
     })
-}
-
-/// The description `text` with `changes` made, as one edit.
-pub(super) fn changed_text(text: &str, changes: Vec<Change>) -> Result<String, Error> {
-    let mut edit = Edit::parse(text)?;
-    for change in changes {
-        match change {
-            Change::Set(field, value) => edit.set(&field, value)?,
-            Change::Remove(field) => edit.remove(&field)?,
-            Change::Push {
-                field,
-                table,
-                inline,
-            } => {
-                edit.push_table(&field, table, inline)?;
-            }
-        }
-    }
-    Ok(edit.text())
 }
 
 #[derive(Deserialize)]
@@ -256,7 +237,7 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
     }
     let text = table
         .click(&click.target, click.at, click.procedure)
-        .and_then(|changes| changed_text(&good.text, changes));
+        .and_then(|changes| Edit::with_changes(&good.text, changes));
     write(&app, text).await
 }
 
@@ -312,7 +293,7 @@ async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
                     }
                 }
             }
-            changed_text(&good.text, changes)
+            Edit::with_changes(&good.text, changes)
         })
     };
     let text = match work.await {
@@ -433,6 +414,6 @@ async fn orbit(State(app): State<App>, Json(change): Json<Turn>) -> Response {
     };
     let text = table
         .turn(&change.target, change.turn, change.tilt)
-        .and_then(|changes| changed_text(&good.text, changes));
+        .and_then(|changes| Edit::with_changes(&good.text, changes));
     write(&app, text).await
 }

@@ -13,8 +13,7 @@ use glam::DVec2;
 use kurbo::BezPath;
 use toml_edit::Array;
 
-use super::edit::table_index;
-use super::gesture::changed_text;
+use super::edit::{table_index, Edit};
 use super::session::Good;
 use crate::error::{Error, Result};
 use crate::family::gesture::{point_list, tenth, Change, Gestures};
@@ -183,7 +182,7 @@ impl Stroke {
                 inline: false,
             }],
         };
-        changed_text(text, changes)
+        Edit::with_changes(text, changes)
     }
 
     /// An id for a new sketch that no table of the layer has.

@@ -13,8 +13,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::family::Family;
-use crate::motif::Context;
-use crate::scene::Group;
 use crate::spec::flora::size;
 use crate::spec::validate::{point, points, range};
 use crate::spec::{FlowerSpec, LeavesSpec, MotifKind, MotifRef, PaintSpec, Points};
@@ -302,10 +300,6 @@ pub struct TreeOverride {
 }
 
 impl Family for TreeSetSpec {
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-        super::tree_set(self, group_id, cx)
-    }
-
     fn check(&self, f: &str) -> Result<()> {
         range(&format!("{f}.count"), self.count, 0, 10_000)?;
         points(&format!("{f}.centre"), &self.centre, 2)?;
@@ -539,10 +533,6 @@ impl BackgroundSpec {
 }
 
 impl Family for BackgroundSpec {
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-        crate::family::kimono::background::background(self, group_id, cx)
-    }
-
     fn offers_regions(&self) -> bool {
         true
     }

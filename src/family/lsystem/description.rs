@@ -17,8 +17,6 @@ use crate::error::{Error, Result};
 use crate::family::lsystem::engine::sketch::SketchRules;
 use crate::family::lsystem::engine::LSystem;
 use crate::family::Family;
-use crate::motif::Context;
-use crate::scene::Group;
 use crate::spec::validate::{point, points, range};
 use crate::spec::LimbStyle;
 use crate::spec::{one_stroke, FlowLine, MotifRef, OrnamentSpec, Points};
@@ -341,10 +339,6 @@ impl Family for LSystemSpec {
     #[cfg(feature = "studio")]
     fn gestures(&self) -> Option<&dyn crate::family::gesture::Gestures> {
         Some(self)
-    }
-
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-        super::build(self, group_id, cx)
     }
 
     fn check(&self, f: &str) -> Result<()> {

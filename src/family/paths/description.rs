@@ -14,8 +14,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::family::Family;
-use crate::motif::Context;
-use crate::scene::Group;
 use crate::spec::validate::{point, points, range};
 use crate::spec::{PaintSpec, Points};
 use crate::units::MAX_COORD;
@@ -168,10 +166,6 @@ fn el_points(el: &PathEl) -> Vec<Point> {
 }
 
 impl Family for PathsSpec {
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-        super::build(self, group_id, cx)
-    }
-
     fn check(&self, f: &str) -> Result<()> {
         let sources = [self.points.is_some(), self.d.is_some(), self.svg.is_some()];
         if sources.iter().filter(|s| **s).count() != 1 {

@@ -16,8 +16,6 @@ use crate::error::{Error, Result};
 use crate::family::vine::engine;
 use crate::family::vine::engine::{Shape, TriMesh, Twining, VineParams};
 use crate::family::Family;
-use crate::motif::Context;
-use crate::scene::Group;
 use crate::spec::validate::range;
 use crate::spec::{one_stroke, FlowLine, MotifKind, MotifRef, Points};
 
@@ -478,10 +476,6 @@ impl Family for VineSpec {
     #[cfg(feature = "studio")]
     fn gestures(&self) -> Option<&dyn crate::family::gesture::Gestures> {
         Some(self)
-    }
-
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-        super::build(self, group_id, cx)
     }
 
     fn check(&self, f: &str) -> Result<()> {

@@ -10,8 +10,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::family::Family;
-use crate::motif::Context;
-use crate::scene::Group;
 use crate::spec::region::RegionSpec;
 use crate::spec::validate::{point, range};
 
@@ -146,10 +144,6 @@ impl Family for WagaraSpec {
         range(&format!("{f}.angle"), self.angle, -180.0, 180.0)?;
         point(&format!("{f}.offset"), self.offset)?;
         self.region.check(&format!("{f}.region"))
-    }
-
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-        super::build(self, group_id, cx)
     }
 
     fn path_files(&self) -> Vec<&str> {

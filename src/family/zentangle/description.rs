@@ -16,8 +16,6 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::family::Family;
 use crate::geom::density::Formula;
-use crate::motif::Context;
-use crate::scene::Group;
 use crate::spec::region::RegionSpec;
 use crate::spec::validate::{point, points, range};
 use crate::spec::Points;
@@ -252,10 +250,6 @@ impl Family for ZentangleSpec {
     #[cfg(feature = "studio")]
     fn gestures(&self) -> Option<&dyn crate::family::gesture::Gestures> {
         Some(self)
-    }
-
-    fn build(&self, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-        super::build(self, group_id, cx)
     }
 
     fn check(&self, f: &str) -> Result<()> {
