@@ -13,7 +13,8 @@ use std::collections::BTreeSet;
 
 use kurbo::{Affine, BezPath};
 
-use super::{build, Note};
+use super::render::build;
+use super::Note;
 use crate::error::{Error, Result};
 use crate::geom::density::GreyImage;
 use crate::geom::path_length;

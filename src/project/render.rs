@@ -1,0 +1,356 @@
+//! A description built into its scene and rendered: SVG, the colour
+//! preview, PNG, the path dump; with progress, cancellation, or without
+//! the pen stage for editing.
+
+use std::path::Path;
+
+use kurbo::Point;
+
+use super::files::load_motifs;
+use super::{Cancel, Note, Progress};
+use crate::error::{Error, Result};
+use crate::motif::{Context, Flow, Library};
+use crate::output::{path_dump, render_png, to_svg, SvgOptions};
+use crate::plot::{self, PlotOptions};
+use crate::scene::{Color, Group, Layer, Model, Pen, Scene};
+use crate::spec::{LayerItem, LayerSpec, Points, Table, ValidSpec, VoronoiSpec};
+
+/// Builds the scene of a description, reading user files relative to the
+/// current directory.
+///
+/// # Errors
+/// See [`build_scene_with_progress`].
+pub fn build_scene(spec: &ValidSpec) -> Result<Scene> {
+    build_scene_with_progress(spec, &load_motifs(spec, Path::new("."))?, &mut |_| {})
+}
+
+/// [`build_scene`] with the library given, reporting progress in work
+/// units of any family.
+///
+/// # Errors
+/// The path budget running out ([`Error::Budget`]), an `[[adjust]]` that
+/// matches nothing or does not fit what it matches ([`Error::Invalid`]
+/// with its line and column when the description came from TOML), a user
+/// file missing from the library ([`Error::Motif`]).
+pub fn build_scene_with_progress(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Scene> {
+    build(spec, library, progress, Cancel::never())
+        .map(|(scene, _, _)| scene)
+        .map_err(|e| spec.locate(e))
+}
+
+/// The scene, the generators' notes and their 3D models.
+pub(super) fn build(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
+) -> Result<(Scene, Vec<Note>, Vec<Model>)> {
+    let flow = Flow::new(&spec.lines);
+    let ids = layer_ids(spec);
+    let mut cx = Context::new(spec, library, &flow, progress).with_cancel(cancel);
+    let mut layers = Vec::with_capacity(spec.layers.len());
+    for (index, (layer, id)) in spec.layers.iter().zip(&ids).enumerate() {
+        layers.push(build_layer((index, layer), id, &mut cx, cancel)?);
+    }
+    cx.adjust().apply_to_groups(&mut layers)?;
+    let (notes, models) = cx.finish()?;
+    let mut pens: Vec<Pen> = spec
+        .pens
+        .iter()
+        .map(|p| Pen {
+            number: p.number,
+            name: p.name.clone(),
+            color: Color::parse_in(&p.color, spec.palette()).unwrap_or(Color::BLACK),
+            width: p.width,
+        })
+        .collect();
+    pens.sort_by_key(|p| p.number);
+    let scene = Scene {
+        page: spec.page(),
+        pens,
+        layers,
+        description: Some(spec.to_toml()),
+    };
+    Ok((scene, notes, models))
+}
+
+/// Builds layer `index` of the description, with SVG id `id`.
+fn build_layer<'a>(
+    (index, layer): (usize, &'a LayerSpec),
+    id: &'a str,
+    cx: &mut Context<'a>,
+    cancel: &Cancel,
+) -> Result<Layer> {
+    let depth = layer.depth.unwrap_or(index as i32);
+    cx.enter_layer((index, layer), id, depth);
+    let mut content = Group::new(format!("{id}.motifs"));
+    for item in layer.items() {
+        cancel.check()?;
+        let group = crate::family::build(&item, cx)?;
+        let segments = group.segment_count();
+        cx.budget()
+            .take_segments(segments, || format!("`{}`", group.id))?;
+        content.push_group(group);
+    }
+    Ok(Layer {
+        id: id.to_string(),
+        name: layer.name.clone(),
+        pen: layer.pen,
+        depth,
+        content,
+    })
+}
+
+/// The sites the `[[layers.voronoi]]` table `layers[layer].voronoi[table]`
+/// starts from, before relaxation: the sites it spreads, or the given
+/// points it keeps (those inside its region, each once). Millimetres from
+/// the top left corner inside the margins, as every point of a
+/// description; in the order the dots' ids `site-<i>` count them.
+///
+/// Written back as the table's `sites.points` ([`VoronoiSpec::pinned`]),
+/// they draw the same: the SVG is the same, byte for byte, but for the
+/// description it embeds. So a designer can pin the sites a distribution
+/// spread, then drag them one by one.
+///
+/// Only the table's sites are made, and the layers before it only when it
+/// fills their regions (`region.layer`).
+///
+/// ```
+/// let template = moyo::templates::get("voronoi-stained-glass")?;
+/// let (spec, library) = (template.spec()?, template.library()?);
+/// let sites = moyo::project::voronoi_sites(&spec, &library, 0, 0)?;
+/// let pinned = spec.edit(|s| {
+///     let table = &mut s.layers[0].voronoi[0];
+///     *table = table.pinned(sites.clone());
+/// })?;
+/// assert_eq!(moyo::project::voronoi_sites(&pinned, &library, 0, 0)?, sites);
+/// # Ok::<(), moyo::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::Invalid`] naming `layers[layer].voronoi[table]` when the
+/// description has no such table; otherwise what rendering reports up to
+/// that table's sites (its region, its image, given points none of which
+/// lies inside), with the line and column when the description came from
+/// TOML.
+pub fn voronoi_sites(
+    spec: &ValidSpec,
+    library: &Library,
+    layer: usize,
+    table: usize,
+) -> Result<Points> {
+    let field = format!("voronoi[{table}]");
+    let found = spec.layers.get(layer).and_then(|l| {
+        let item = l.items().into_iter().find(|item| item.field == field)?;
+        match item.table {
+            Table::Voronoi(v) => Some((l, item, v)),
+            _ => None,
+        }
+    });
+    let Some((layer_spec, item, voronoi)) = found else {
+        return Err(Error::invalid(
+            format!("layers[{layer}].{field}"),
+            "the description has no such voronoi table",
+        ));
+    };
+    let sites = table_sites(spec, library, (layer, layer_spec), &item, voronoi)
+        .map_err(|e| spec.locate(e))?;
+    Ok(sites.into_iter().map(|p| [p.x, p.y]).collect())
+}
+
+/// [`voronoi_sites`] of the table `item`, `voronoi`, of layer `index`.
+fn table_sites(
+    spec: &ValidSpec,
+    library: &Library,
+    (index, layer): (usize, &LayerSpec),
+    item: &LayerItem<'_>,
+    voronoi: &VoronoiSpec,
+) -> Result<Vec<Point>> {
+    let flow = Flow::new(&spec.lines);
+    let ids = layer_ids(spec);
+    let mut quiet = |_| {};
+    let mut cx = Context::new(spec, library, &flow, &mut quiet);
+    // The regions a table fills come from the layers built before it.
+    if !item.table.family().layers_read().is_empty() {
+        for (i, (earlier, id)) in spec.layers.iter().zip(&ids).enumerate().take(index) {
+            build_layer((i, earlier), id, &mut cx, Cancel::never())?;
+        }
+    }
+    let depth = layer.depth.unwrap_or(index as i32);
+    cx.enter_layer((index, layer), &ids[index], depth);
+    crate::family::voronoi_sites(item, voronoi, &mut cx)
+}
+
+/// Stable, unique, SVG-safe ids for the layers, made from their names.
+fn layer_ids(spec: &ValidSpec) -> Vec<String> {
+    let mut ids: Vec<String> = Vec::new();
+    for layer in &spec.layers {
+        let mut slug: String = layer
+            .name
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() {
+                    c.to_ascii_lowercase()
+                } else {
+                    '-'
+                }
+            })
+            .collect();
+        if !slug.starts_with(|c: char| c.is_ascii_alphabetic()) {
+            slug.insert_str(0, "layer-");
+        }
+        let mut id = slug.clone();
+        let mut n = 2;
+        while ids.contains(&id) {
+            id = format!("{slug}-{n}");
+            n += 1;
+        }
+        ids.push(id);
+    }
+    ids
+}
+
+/// The SVG options a description asks for.
+pub fn svg_options(spec: &ValidSpec) -> SvgOptions {
+    SvgOptions::DEFAULT.with_precision(spec.output.precision)
+}
+
+/// Everything a render produces, in memory.
+#[derive(Debug, Clone)]
+pub struct Rendered {
+    /// The scene.
+    pub scene: Scene,
+    /// The SVG to plot: only what pens draw (see [`crate::output::to_svg`]);
+    /// the colour preview is [`Rendered::preview_svg`].
+    pub svg: String,
+    /// What the generators noted (how relaxations converged…), in scene
+    /// order.
+    pub notes: Vec<Note>,
+    /// The 3D models the generators made (a vine and its supports), for
+    /// [`crate::output::to_obj`]; empty for a flat scene.
+    pub models: Vec<Model>,
+    /// The options `svg` was written with.
+    options: SvgOptions,
+}
+
+/// Builds the scene, runs the plot stages the description asks for and
+/// writes its SVG; user motifs are read relative to the current directory.
+pub fn render(spec: &ValidSpec) -> Result<Rendered> {
+    render_with_progress(spec, &load_motifs(spec, Path::new("."))?, &mut |_| {})
+}
+
+/// [`render`] with the motifs given and progress reports.
+pub fn render_with_progress(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Rendered> {
+    render_cancellable(spec, library, progress, Cancel::never())
+}
+
+/// [`render_with_progress`] that stops with [`Error::Cancelled`] soon
+/// after `cancel` is raised: between tables, whenever a generator takes
+/// paths from the budget, between the plot stages and inside hidden-line
+/// removal, and before the SVG.
+///
+/// # Errors
+/// As [`render_with_progress`], and [`Error::Cancelled`].
+pub fn render_cancellable(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
+) -> Result<Rendered> {
+    render_through(spec, library, progress, cancel, &spec.plot.options())
+}
+
+/// [`render_cancellable`] without the stages that make one flat layer per
+/// pen (the pen stage among them: [`PlotOptions::keeping_groups`]): the
+/// scene keeps the description's layers, every table's group and every
+/// id, so that each part of the drawing can be found and pointed at, as the
+/// studio does. Its SVG is a preview of the design, not what a pen should
+/// draw: [`Rendered::pen_ready`] makes that.
+///
+/// # Errors
+/// As [`render_cancellable`].
+pub fn render_for_editing(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
+) -> Result<Rendered> {
+    let stages = spec.plot.options().keeping_groups();
+    render_through(spec, library, progress, cancel, &stages)
+}
+
+/// Builds the scene and runs `stages` on it.
+fn render_through(
+    spec: &ValidSpec,
+    library: &Library,
+    progress: &mut dyn FnMut(Progress),
+    cancel: &Cancel,
+    stages: &PlotOptions,
+) -> Result<Rendered> {
+    let (scene, notes, models) =
+        build(spec, library, progress, cancel).map_err(|e| spec.locate(e))?;
+    cancel.check()?;
+    let scene = plot::run_cancellable(scene, stages, cancel)?;
+    cancel.check()?;
+    let options = svg_options(spec);
+    let svg = to_svg(&scene, &options);
+    Ok(Rendered {
+        scene,
+        svg,
+        notes,
+        models,
+        options,
+    })
+}
+
+impl Rendered {
+    /// What [`render_cancellable`] makes of `spec`, from this render of
+    /// it by [`render_for_editing`]: the stages that render left out (the
+    /// pen stage) run on its scene.
+    ///
+    /// # Errors
+    /// As [`plot::run`].
+    pub fn pen_ready(&self, spec: &ValidSpec) -> Result<Rendered> {
+        let all = spec.plot.options();
+        let rest = PlotOptions {
+            transform: None,
+            occlude: None,
+            hatch: None,
+            ..all
+        };
+        let scene = plot::run(self.scene.clone(), &rest)?;
+        let svg = to_svg(&scene, &self.options);
+        Ok(Rendered {
+            scene,
+            svg,
+            notes: self.notes.clone(),
+            models: self.models.clone(),
+            options: self.options,
+        })
+    }
+
+    /// The colour preview SVG: the plot's pen layers as they are in
+    /// [`Rendered::svg`], plus the preview colour of partly hidden shapes
+    /// and the layers that are not plotted.
+    pub fn preview_svg(&self) -> String {
+        to_svg(&self.scene, &self.options.with_preview(true))
+    }
+
+    /// PNG preview, rendered from [`Rendered::preview_svg`].
+    pub fn png(&self, dpi: f64) -> Result<Vec<u8>> {
+        render_png(&self.preview_svg(), dpi)
+    }
+
+    /// The line-oriented path dump (see [`crate::output::path_dump`]).
+    pub fn dump(&self, precision: u8) -> String {
+        path_dump(&self.scene, precision)
+    }
+}
