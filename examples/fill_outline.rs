@@ -1,6 +1,6 @@
 //! Fills the closed shapes of any drawing with a pattern on a pen of its
-//! own — here a leaf outline with stained-glass cells and a ring with a
-//! zentangle — and writes the result, the drawing's own lines untouched.
+//! own — here a leaf outline with stained-glass cells — and writes the
+//! result, the drawing's own lines untouched.
 //!
 //! Run with `cargo run --example fill_outline -- [OUT.svg]` (default:
 //! `filled.svg` in the system's temporary folder).
