@@ -1,4 +1,4 @@
-//! Final adjustment (SPEC §1, design step 4): the description's `[[adjust]]`
+//! Final adjustment (docs/SPEC.md §1, design step 4): the description's `[[adjust]]`
 //! entries, looked up by the id a motif of any family has in the SVG (a
 //! tree, a flower, a leaf, a placed path …).
 //!

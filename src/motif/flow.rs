@@ -1,5 +1,5 @@
 //! Lines on the page that motifs follow or stop at: control points made
-//! into natural splines, and the overall flow of a scene (SPEC §1.1): the
+//! into natural splines, and the overall flow of a scene (docs/SPEC.md §1.1): the
 //! upper and lower region lines that stop growth.
 
 use kurbo::{BezPath, Point};

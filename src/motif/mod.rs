@@ -4,8 +4,8 @@
 //! flow, layer, budget, adjustments, progress), final adjustment by id
 //! (`adjust`), the overall flow (`flow`), `[region]` tables as regions
 //! (`region`), shading in line (`bokashi`), strokes to follow
-//! (`stroke`), putting a motif on the page (`place`) and limbs drawn
-//! for the pen (`limb`).
+//! (`stroke`), putting a motif on the page (`place`), limbs drawn
+//! for the pen (`limb`) and dots that are dots, not rings (`dot`).
 //!
 //! The families themselves live in `crate::family`; what a library user
 //! reaches here is the motif [`Library`], [`draw`] for one motif on its
@@ -14,6 +14,7 @@
 pub(crate) mod adjust;
 pub(crate) mod bokashi;
 mod context;
+pub(crate) mod dot;
 pub(crate) mod flora;
 mod flow;
 pub(crate) mod limb;

@@ -1,5 +1,5 @@
 //! `[[layers.voronoi]]`: Voronoi and Delaunay patterns inside a region
-//! (SPEC §3) — cell outlines, Delaunay edges, inset cells (stained glass,
+//! (docs/SPEC.md §3) — cell outlines, Delaunay edges, inset cells (stained glass,
 //! cracked earth), the sites as dots, and one pen-down tour through them.
 //!
 //! The region is the page inside its margins unless a `[region]` names a

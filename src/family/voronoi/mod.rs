@@ -23,7 +23,6 @@
 pub(crate) mod description;
 #[cfg(feature = "studio")]
 mod gesture;
-mod dot;
 
 use std::collections::BTreeMap;
 
@@ -40,6 +39,7 @@ use crate::geom::voronoi::{
 use crate::geom::{sample, tour, TOLERANCE};
 use crate::motif::adjust::about;
 use crate::motif::region::region;
+use crate::motif::dot::dot;
 use crate::motif::Context;
 use crate::rng::RandomStream;
 use crate::scene::{Group, Style};
@@ -108,7 +108,7 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
                 sites
                     .iter()
                     .enumerate()
-                    .map(|(i, p)| (format!("{id}.site-{i}"), dot::dot(*p, radius(*p), width)))
+                    .map(|(i, p)| (format!("{id}.site-{i}"), dot(*p, radius(*p), width)))
                     .collect()
             }
             Draw::Tour => vec![(format!("{id}.line"), tour_path(&sites, &edges))],

@@ -1,6 +1,7 @@
 //! `[[layers.wagara]]`: a traditional Japanese ground (和柄) filling a
-//! region as one seamless repeat: seigaiha, asanoha, kikkō, shippō or
-//! kagome, at a scale, turned by an angle, shifted by an offset.
+//! region as one seamless repeat: seigaiha, asanoha, kikkō, shippō,
+//! kagome, uroko, yagasuri, tatewaku or same-komon, at a scale, turned by
+//! an angle, shifted by an offset.
 //!
 //! The region is the page inside its margins unless a `[region]` names a
 //! circle, a polygon, an SVG's shapes, an image's light parts or the
@@ -22,16 +23,23 @@ pub struct WagaraSpec {
     pub id: Option<String>,
     /// Which ground.
     pub pattern: Ground,
-    /// The size of one repeat, mm (1–200, default 10): a seigaiha fan's
-    /// radius, an asanoha triangle's side, a kikkō hexagon's radius, a
-    /// shippō circle's radius, the spacing of kagome's lines.
+    /// The size of one repeat, mm (1–200, default 10): a seigaiha or
+    /// same-komon fan's radius, an asanoha or uroko triangle's side, a
+    /// kikkō hexagon's radius, a shippō circle's radius, the spacing of
+    /// kagome's lines, the width of a yagasuri column or of a tatewaku
+    /// wave.
     #[serde(default = "default_scale")]
     pub scale: f64,
     /// Lines of one motif: a seigaiha fan's rings (1–8, default 4), a
-    /// kikkō hexagon's outlines, the cell and those inside it (1–3,
-    /// default 2). The other grounds take none.
+    /// same-komon fan's rings of dots (1–8, default 3), a kikkō hexagon's
+    /// outlines, the cell and those inside it (1–3, default 2). The other
+    /// grounds take none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lines: Option<u32>,
+    /// Uroko: the distance between the hatch lines that ink its dark
+    /// triangles, mm (0.1–10, default 0.5). The other grounds take none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hatch: Option<f64>,
     /// The repeat turned clockwise by this many degrees (−180–180,
     /// default 0) about the region's centre.
     #[serde(default, skip_serializing_if = "is_zero")]
@@ -69,16 +77,33 @@ pub enum Ground {
     /// 籠目, woven bamboo: three sets of straight lines, hexagons and
     /// triangles between them.
     Kagome,
+    /// 鱗, scales: a triangle grid whose upward triangles are dark (hatched
+    /// with the pen).
+    Uroko,
+    /// 矢絣, arrow feathers: columns of chevrons, each column half a
+    /// chevron higher than the next.
+    Yagasuri,
+    /// 立涌, rising steam: wavy upright lines, each the mirror of the next,
+    /// swelling and narrowing in turn.
+    Tatewaku,
+    /// 鮫小紋, shark skin: fans of concentric rings of fine dots, each row
+    /// half hidden by the row in front, as seigaiha's rings are.
+    #[serde(rename = "samekomon")]
+    SameKomon,
 }
 
 impl Ground {
     /// Every ground, in the order of the enum.
-    pub const ALL: [Ground; 5] = [
+    pub const ALL: [Ground; 9] = [
         Ground::Seigaiha,
         Ground::Asanoha,
         Ground::Kikko,
         Ground::Shippo,
         Ground::Kagome,
+        Ground::Uroko,
+        Ground::Yagasuri,
+        Ground::Tatewaku,
+        Ground::SameKomon,
     ];
 
     /// Its name in a description (`"seigaiha"`), and in the ids it draws.
@@ -89,6 +114,10 @@ impl Ground {
             Ground::Kikko => "kikko",
             Ground::Shippo => "shippo",
             Ground::Kagome => "kagome",
+            Ground::Uroko => "uroko",
+            Ground::Yagasuri => "yagasuri",
+            Ground::Tatewaku => "tatewaku",
+            Ground::SameKomon => "samekomon",
         }
     }
 
@@ -97,7 +126,13 @@ impl Ground {
         match self {
             Ground::Seigaiha => Some((1, 8, 4)),
             Ground::Kikko => Some((1, 3, 2)),
-            Ground::Asanoha | Ground::Shippo | Ground::Kagome => None,
+            Ground::SameKomon => Some((1, 8, 3)),
+            Ground::Asanoha
+            | Ground::Shippo
+            | Ground::Kagome
+            | Ground::Uroko
+            | Ground::Yagasuri
+            | Ground::Tatewaku => None,
         }
     }
 }
@@ -118,10 +153,14 @@ impl WagaraSpec {
     /// The lines of one motif, as given or by default (1 for the grounds
     /// that take none).
     pub fn line_count(&self) -> u32 {
-        match self.pattern.lines() {
-            Some((_, _, default)) => self.lines.unwrap_or(default),
-            None => 1,
-        }
+        self.pattern
+            .lines()
+            .map_or(1, |(_, _, default)| self.lines.unwrap_or(default))
+    }
+
+    /// The hatch spacing of the dark parts, as given or by default, mm.
+    pub fn hatch_spacing(&self) -> f64 {
+        self.hatch.unwrap_or(0.5)
     }
 }
 
@@ -134,7 +173,20 @@ impl Family for WagaraSpec {
                 return Err(Error::invalid(
                     format!("{f}.lines"),
                     format!(
-                        "{} takes no `lines` (only seigaiha and kikko do)",
+                        "{} takes no `lines` (only seigaiha, kikko and samekomon do)",
+                        self.pattern.name()
+                    ),
+                ));
+            }
+            (_, None) => {}
+        }
+        match (self.pattern, self.hatch) {
+            (Ground::Uroko, Some(h)) => range(&format!("{f}.hatch"), h, 0.1, 10.0)?,
+            (_, Some(_)) => {
+                return Err(Error::invalid(
+                    format!("{f}.hatch"),
+                    format!(
+                        "{} takes no `hatch` (only uroko has dark parts)",
                         self.pattern.name()
                     ),
                 ));

@@ -20,11 +20,25 @@
 //!   `scale`, in rows `scale`/2 apart, each row shifted by a radius; a row
 //!   in front (further down) hides what of the rows behind it lies under
 //!   its fans, so each ring is drawn as its arcs in sight.
+//! * **Same-komon**: seigaiha's fans with rings of dots in the middle of
+//!   `lines` bands, the dots a band apart along each arc in sight, each
+//!   a dot of ink (`motif::dot`), not a ring.
+//! * **Uroko**: the triangle grid of side `scale`; its upward triangles
+//!   are the dark shapes (closed, hatched by the pen), the others the
+//!   paper between them, so no line but the dark triangles' edges.
+//! * **Yagasuri**: upright lines `scale` apart, and in each column
+//!   chevrons 1.5 `scale` apart, half a chevron higher in every other
+//!   column.
+//! * **Tatewaku**: upright waves `scale` apart, a quarter of that to
+//!   either side, one wave `2·scale` long, each the mirror of the next:
+//!   between two waves the paper swells and narrows in turn.
 
 use std::f64::consts::{PI, TAU};
 
 use kurbo::{Arc, BezPath, Circle, Line, Point, Rect, Shape, Vec2};
 
+use crate::geom::natural_spline;
+use crate::motif::dot::dot;
 use crate::spec::Ground;
 
 /// Curves are made within this distance of the true circle, mm.
@@ -34,15 +48,37 @@ const ACCURACY: f64 = 1e-3;
 /// the one around it.
 const KIKKO_STEP: f64 = 0.2;
 
-/// The strokes of `ground` that reach into `window`, in the repeat's frame
-/// (the repeat's origin is the frame's).
-pub(super) fn strokes(ground: Ground, scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
-    match ground {
+/// What a ground draws over a window, in the repeat's frame.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Drawn {
+    /// Lines, arcs and dots.
+    pub strokes: Vec<BezPath>,
+    /// Closed shapes inked all over (hatched by the pen).
+    pub dark: Vec<BezPath>,
+}
+
+/// `ground` over `window`, in the repeat's frame (the repeat's origin is
+/// the frame's); dots are drawn for a pen `pen_width` mm wide.
+pub(super) fn draw(ground: Ground, scale: f64, lines: u32, pen_width: f64, window: Rect) -> Drawn {
+    let strokes = match ground {
         Ground::Kagome => kagome(scale, window),
         Ground::Asanoha => asanoha(scale, window),
         Ground::Kikko => kikko(scale, lines, window),
         Ground::Shippo => shippo(scale, window),
         Ground::Seigaiha => seigaiha(scale, lines, window),
+        Ground::SameKomon => same_komon(scale, lines, pen_width, window),
+        Ground::Yagasuri => yagasuri(scale, window),
+        Ground::Tatewaku => tatewaku(scale, window),
+        Ground::Uroko => {
+            return Drawn {
+                strokes: Vec::new(),
+                dark: uroko(scale, window),
+            }
+        }
+    };
+    Drawn {
+        strokes,
+        dark: Vec::new(),
     }
 }
 
@@ -62,6 +98,13 @@ pub(super) fn estimate(ground: Ground, scale: f64, lines: u32, window: Rect) -> 
         Ground::Shippo => 0.5,
         // One fan per square, each ring in up to three arcs.
         Ground::Seigaiha => 3.0 * f64::from(lines),
+        // One fan per square, ring k of it about 2.1·k dots in sight.
+        Ground::SameKomon => 1.5 * f64::from(lines * (lines + 1)),
+        // 1.15 upward triangles per square.
+        Ground::Uroko => 1.2,
+        // A chevron per 1.5 squares.
+        Ground::Yagasuri => 0.7,
+        Ground::Tatewaku => 0.0,
     };
     let (w, h) = (window.width() / scale + 2.0, window.height() / scale + 2.0);
     per_square * w * h + 4.0 * (w + h) + 16.0
@@ -224,12 +267,45 @@ fn shippo(scale: f64, window: Rect) -> Vec<BezPath> {
 }
 
 fn seigaiha(scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
+    let radii: Vec<f64> = (0..lines)
+        .map(|k| scale * f64::from(lines - k) / f64::from(lines))
+        .collect();
+    fan_arcs(scale, &radii, window)
+        .into_iter()
+        .map(|arc| arc.to_path(ACCURACY))
+        .collect()
+}
+
+fn same_komon(scale: f64, lines: u32, pen_width: f64, window: Rect) -> Vec<BezPath> {
+    // Rings in the middle of `lines` bands; dots a band apart, their ink
+    // a little under half a band across (a pen's tap at the least).
+    let band = scale / f64::from(lines);
+    let radii: Vec<f64> = (0..lines)
+        .map(|k| band * (f64::from(k) + 0.5))
+        .collect();
+    let ink = (0.22 * band).max(0.5 * pen_width);
+    let mut dots = Vec::new();
+    for arc in fan_arcs(scale, &radii, window) {
+        let length = arc.sweep_angle * arc.radii.x;
+        let n = (length / band).round().max(1.0);
+        for i in 0..n as usize {
+            let angle = arc.start_angle + arc.sweep_angle * (i as f64 + 0.5) / n;
+            dots.push(dot(arc.center + Vec2::from_angle(angle) * arc.radii.x, ink, pen_width));
+        }
+    }
+    dots
+}
+
+/// The arcs in sight of fans of rings of `radii` (at most `scale`), in
+/// rows `scale`/2 apart, each row shifted by `scale` and hiding what of
+/// the rows behind it lies under its fans (discs of radius `scale`).
+fn fan_arcs(scale: f64, radii: &[f64], window: Rect) -> Vec<Arc> {
     let pitch = 0.5 * scale;
     let fan = |i: i64, j: i64| {
         let shift = if j.rem_euclid(2) == 1 { scale } else { 0.0 };
         Point::new(shift + i as f64 * 2.0 * scale, j as f64 * pitch)
     };
-    let mut strokes = Vec::new();
+    let mut arcs = Vec::new();
     let rows = (window.y0 / pitch).floor() as i64 - 1..=(window.y1 / pitch).ceil() as i64 + 4;
     for j in rows {
         let shift = if j.rem_euclid(2) == 1 { scale } else { 0.0 };
@@ -247,16 +323,83 @@ fn seigaiha(scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
                 .map(|(di, dj)| fan(i + di, j + dj))
                 .filter(|c| c.distance(centre) < 2.0 * scale)
                 .collect();
-            for k in 0..lines {
-                let radius = scale * f64::from(lines - k) / f64::from(lines);
+            for &radius in radii {
                 for (start, sweep) in in_sight(centre, radius, &front, scale) {
-                    let arc = Arc::new(centre, (radius, radius), start, sweep, 0.0);
-                    strokes.push(arc.to_path(ACCURACY));
+                    arcs.push(Arc::new(centre, (radius, radius), start, sweep, 0.0));
                 }
             }
         }
     }
+    arcs
+}
+
+fn uroko(scale: f64, window: Rect) -> Vec<BezPath> {
+    let height = scale * 3f64.sqrt() / 2.0;
+    let mut dark = Vec::new();
+    let rows = (window.y0 / height).floor() as i64 - 1..=(window.y1 / height).ceil() as i64 + 2;
+    for j in rows {
+        let y = j as f64 * height;
+        let shift = if j.rem_euclid(2) == 1 { 0.5 * scale } else { 0.0 };
+        let columns = ((window.x0 - shift) / scale).floor() as i64 - 1
+            ..=((window.x1 - shift) / scale).ceil() as i64 + 1;
+        for i in columns {
+            let x = shift + i as f64 * scale;
+            let mut triangle = BezPath::new();
+            triangle.move_to((x, y));
+            triangle.line_to((x + scale, y));
+            triangle.line_to((x + 0.5 * scale, y - height));
+            triangle.close_path();
+            dark.push(triangle);
+        }
+    }
+    dark
+}
+
+fn yagasuri(scale: f64, window: Rect) -> Vec<BezPath> {
+    let pitch = 1.5 * scale;
+    let depth = 0.5 * scale;
+    let mut strokes = parallels(Vec2::new(1.0, 0.0), scale, 0.0, window);
+    let columns =
+        (window.x0 / scale).floor() as i64 - 1..=(window.x1 / scale).ceil() as i64;
+    for k in columns {
+        let x = k as f64 * scale;
+        let lift = if k.rem_euclid(2) == 1 { 0.5 * pitch } else { 0.0 };
+        let rows = ((window.y0 - lift) / pitch).floor() as i64 - 1
+            ..=((window.y1 - lift) / pitch).ceil() as i64 + 1;
+        for m in rows {
+            let y = lift + m as f64 * pitch;
+            let mut chevron = BezPath::new();
+            chevron.move_to((x, y));
+            chevron.line_to((x + 0.5 * scale, y + depth));
+            chevron.line_to((x + scale, y));
+            strokes.push(chevron);
+        }
+    }
     strokes
+}
+
+fn tatewaku(scale: f64, window: Rect) -> Vec<BezPath> {
+    let sway = 0.25 * scale;
+    let wave = 2.0 * scale;
+    // Points 1/16 of a wave apart: the spline through them stays within
+    // a micrometre of the sine at these sizes.
+    let step = wave / 16.0;
+    let first = ((window.y0 - wave) / wave).floor() * wave;
+    let count = ((window.y1 + wave - first) / step).ceil() as usize + 1;
+    let columns =
+        (window.x0 / scale).floor() as i64 - 1..=(window.x1 / scale).ceil() as i64 + 1;
+    columns
+        .map(|k| {
+            let side = if k.rem_euclid(2) == 1 { -sway } else { sway };
+            let points: Vec<Point> = (0..count)
+                .map(|n| {
+                    let y = first + n as f64 * step;
+                    Point::new(k as f64 * scale + side * (TAU * y / wave).cos(), y)
+                })
+                .collect();
+            natural_spline(&points)
+        })
+        .collect()
 }
 
 /// The arcs of the circle (`centre`, `radius`) outside every disc of

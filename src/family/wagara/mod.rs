@@ -6,7 +6,8 @@
 //! plus `offset`, turned by `angle`) over the region's box, then mapped
 //! onto the page and clipped to the region exactly. Ids:
 //! `<layer>.<ground>.<pattern>.stroke-<i>` (`front.waves.seigaiha.stroke-3`),
-//! so `[[adjust]]` can hide or move one stroke, and
+//! `….dark-<i>` for a dark shape (uroko's triangles, hatched by the pen),
+//! so `[[adjust]]` can hide or move one, and
 //! `<layer>.<ground>.<pattern>.outline` for the region's edge.
 
 pub(crate) mod description;
@@ -19,11 +20,12 @@ use kurbo::{Affine, Vec2};
 
 use crate::error::Result;
 use crate::geom::clip::StrokeClipper;
+use crate::geom::region::{FillRule, Region};
 use crate::geom::TOLERANCE;
 use crate::motif::adjust::about;
 use crate::motif::region::region;
 use crate::motif::Context;
-use crate::scene::{Group, Style};
+use crate::scene::{Color, Group, Style};
 use crate::spec::WagaraSpec;
 
 /// Builds the ground into a group with id `group_id`.
@@ -50,22 +52,44 @@ pub(super) fn build(spec: &WagaraSpec, group_id: &str, cx: &mut Context<'_>) -> 
     cx.budget()
         .clone()
         .take(estimate.min(usize::MAX as f64) as usize, what)?;
+    let drawn = ground::draw(spec.pattern, spec.scale, lines, cx.pen_width(), window);
     let clipper = StrokeClipper::new(&region, TOLERANCE);
-    let strokes: Vec<_> = ground::strokes(spec.pattern, spec.scale, lines, window)
+    let strokes: Vec<_> = drawn
+        .strokes
         .into_iter()
         .flat_map(|stroke| clipper.clip(&(place * stroke)).inside)
         .collect();
-    cx.take_paths(strokes.len(), what)?;
+    // Dark shapes are cut to the region as areas, so they stay closed.
+    let mut dark = Vec::new();
+    for shape in drawn.dark {
+        let cut = Region::new(place * shape, FillRule::NonZero)?.intersection(&region);
+        if !cut.is_empty() {
+            dark.push(cut.into_path());
+        }
+    }
+    cx.take_paths(strokes.len() + dark.len(), what)?;
     let id = format!("{group_id}.{name}");
     let mut part = Group::new(&id);
-    for (i, path) in strokes.into_iter().enumerate() {
-        let path_id = format!("{id}.stroke-{i}");
+    let ink = Style {
+        fill: Some(Color::BLACK),
+        hatch: Some(spec.hatch_spacing()),
+        ..Style::default()
+    };
+    let paths = strokes
+        .into_iter()
+        .map(|p| ("stroke", p, Style::default()))
+        .chain(dark.into_iter().map(|p| ("dark", p, ink.clone())));
+    let mut counts = [0usize; 2];
+    for (kind, path, style) in paths {
+        let n = &mut counts[usize::from(kind == "dark")];
+        let path_id = format!("{id}.{kind}-{n}");
+        *n += 1;
         let adjusted = cx.adjust().take_without_motif(&path_id, "a wagara stroke")?;
         if adjusted.is_some_and(|a| a.hide) {
             continue;
         }
         let path = about(adjusted, kurbo::Shape::bounding_box(&path).center()) * path;
-        part.push_path(path_id, path, Style::default());
+        part.push_path(path_id, path, style);
     }
     if spec.outline {
         cx.take_paths(1, what)?;

@@ -7,7 +7,7 @@ use kurbo::{
     Vec2,
 };
 
-use super::ground::{estimate, strokes};
+use super::ground::{draw, estimate};
 use crate::motif::test_scene;
 use crate::plot::dedupe::doubled_length;
 use crate::spec::Ground;
@@ -20,6 +20,13 @@ fn drawn(table: &str) -> Vec<BezPath> {
         .content
         .visit_paths(Affine::IDENTITY, &mut |p, t| paths.push(t * p.path.clone()));
     paths
+}
+
+/// Everything `ground` draws over `window` (strokes and dark shapes), in
+/// the repeat's frame, for a 0.3 mm pen.
+fn strokes(ground: Ground, scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
+    let drawn = draw(ground, scale, lines, 0.3, window);
+    drawn.strokes.into_iter().chain(drawn.dark).collect()
 }
 
 /// Points along `paths`, about every 0.2 mm.
@@ -50,7 +57,10 @@ fn period(ground: Ground, s: f64) -> Vec2 {
         Ground::Asanoha => Vec2::new(0.5 * s, s * 3f64.sqrt() / 2.0),
         Ground::Kikko => Vec2::new(s * 3f64.sqrt() / 2.0, 1.5 * s),
         Ground::Shippo => Vec2::new(s * 2f64.sqrt(), 0.0),
-        Ground::Seigaiha => Vec2::new(s, 0.5 * s),
+        Ground::Seigaiha | Ground::SameKomon => Vec2::new(s, 0.5 * s),
+        Ground::Uroko => Vec2::new(0.5 * s, s * 3f64.sqrt() / 2.0),
+        Ground::Yagasuri => Vec2::new(s, 0.75 * s),
+        Ground::Tatewaku => Vec2::new(2.0 * s, 0.0),
     }
 }
 
@@ -65,7 +75,8 @@ fn every_ground_stays_inside_its_region() {
             ground,
             "region = { circle = { centre = [60, 80], radius = 40 } }",
         ));
-        assert!(paths.len() > 20, "{ground:?}: {} strokes", paths.len());
+        // Tatewaku's waves run the whole height: a dozen fill the circle.
+        assert!(paths.len() > 8, "{ground:?}: {} strokes", paths.len());
         for p in samples(&paths) {
             let r = p.distance(Point::new(60.0, 80.0));
             assert!(r <= 40.0 + 0.02, "{ground:?}: {p:?} at {r} from the centre");
@@ -134,7 +145,7 @@ fn the_repeat_laid_over_a_shifted_window_is_the_same_repeat_shifted() {
 
 #[test]
 fn curved_grounds_have_no_straight_line_and_straight_ones_no_long_seam() {
-    for ground in [Ground::Seigaiha, Ground::Shippo] {
+    for ground in [Ground::Seigaiha, Ground::Shippo, Ground::Tatewaku] {
         let paths = drawn(&table(ground, ""));
         let lines = paths
             .iter()
@@ -165,6 +176,10 @@ fn more_lines_draw_more_rings_and_inner_outlines() {
         let three = length("lines = 3", ground);
         assert!(three > 1.5 * one, "{ground:?}: {one} mm, then {three} mm");
     }
+    // Same-komon's rings split the fan into finer bands of finer dots.
+    let dots = |extra: &str| drawn(&table(Ground::SameKomon, extra)).len();
+    let (one, three) = (dots("lines = 1"), dots("lines = 3"));
+    assert!(three > 4 * one, "{one} dots, then {three}");
     // Seigaiha's rings split the fan's radius evenly: with two at scale
     // 10, every arc lies on a circle of radius 10 or 5.
     let arcs = strokes(Ground::Seigaiha, 10.0, 2, Rect::new(0.0, 0.0, 40.0, 40.0));
@@ -238,6 +253,10 @@ fn bad_tables_name_their_field() {
     assert!(e.contains("layers[0].wagara[0].lines"), "{e}");
     let e = test_scene::error("wagara", "pattern = \"kikko\"\nscale = 0.5");
     assert!(e.contains("layers[0].wagara[0].scale"), "{e}");
+    let e = test_scene::error("wagara", "pattern = \"kagome\"\nhatch = 1");
+    assert!(e.contains("layers[0].wagara[0].hatch") && e.contains("kagome takes no"), "{e}");
+    let e = test_scene::error("wagara", "pattern = \"uroko\"\nhatch = 0");
+    assert!(e.contains("layers[0].wagara[0].hatch"), "{e}");
     let e = test_scene::error("wagara", "pattern = \"ichimatsu\"");
     assert!(e.contains("pattern"), "{e}");
 }
@@ -258,4 +277,63 @@ fn a_ground_too_fine_for_the_budget_fails_before_the_work() {
         assert!(guessed >= made, "{ground:?}: {guessed} < {made}");
         assert!(guessed < 4.0 * made + 100.0, "{ground:?}: {guessed} for {made}");
     }
+}
+
+#[test]
+fn uroko_is_dark_triangles_hatched_as_finely_as_asked() {
+    // Before the plot stages: closed triangles filled black, nothing else.
+    let scene = test_scene::scene("wagara", &table(Ground::Uroko, ""));
+    let mut styles = Vec::new();
+    scene.layers[0]
+        .content
+        .visit_paths(Affine::IDENTITY, &mut |p, _| styles.push(p.style.clone()));
+    assert!(styles.len() > 50);
+    assert!(styles.iter().all(|s| s.fill.is_some() && s.hatch == Some(0.5)));
+    // Through the hatch stage: half the spacing, about twice the hatch.
+    let ink = |hatch: &str| -> f64 {
+        let text = test_scene::text("wagara", &table(Ground::Uroko, hatch));
+        let spec = crate::spec::SceneSpec::parse(&text, crate::spec::Format::Toml).unwrap();
+        let mut length = 0.0;
+        test_scene::editing(&spec).layers[0]
+            .content
+            .visit_paths(Affine::IDENTITY, &mut |p, t| {
+                length += (t * p.path.clone()).perimeter(1e-3);
+            });
+        length
+    };
+    let (fine, coarse) = (ink("hatch = 0.5"), ink("hatch = 1"));
+    assert!(fine > 1.3 * coarse, "{fine} mm at 0.5, {coarse} mm at 1");
+}
+
+#[test]
+fn same_komon_draws_dots_not_rings() {
+    // Every stroke is a dot: a tap or a filled spiral no wider than the
+    // band between rings.
+    let paths = drawn(&table(Ground::SameKomon, "lines = 4"));
+    assert!(paths.len() > 500, "{} dots", paths.len());
+    for p in &paths {
+        let b = p.bounding_box();
+        assert!(b.width() <= 8.0 / 4.0 && b.height() <= 8.0 / 4.0, "{b:?}");
+    }
+}
+
+#[test]
+fn tatewaku_swells_and_narrows_between_mirrored_waves() {
+    // Two neighbouring waves: a quarter of the spacing to either side, so
+    // the paper between them runs from half the spacing to one and a half.
+    let waves = strokes(Ground::Tatewaku, 10.0, 1, Rect::new(0.0, 0.0, 20.0, 40.0));
+    let x_at = |k: usize, y: f64| -> f64 {
+        samples(&waves[k..=k])
+            .into_iter()
+            .min_by(|a, b| (a.y - y).abs().total_cmp(&(b.y - y).abs()))
+            .unwrap()
+            .x
+    };
+    let (mut narrow, mut wide) = (f64::INFINITY, 0.0f64);
+    for y in (0..40).map(f64::from) {
+        let gap = x_at(2, y) - x_at(1, y);
+        narrow = narrow.min(gap);
+        wide = wide.max(gap);
+    }
+    assert!((narrow - 5.0).abs() < 0.1 && (wide - 15.0).abs() < 0.1, "{narrow} to {wide}");
 }

@@ -1,4 +1,4 @@
-//! Flowers, leaves and background tiles as vector motifs (SPEC §1.5, §1.6).
+//! Flowers, leaves and background tiles as vector motifs (docs/SPEC.md §1.5, §1.6).
 //!
 //! The source pasted bitmap images; moyo draws every motif as Bézier paths
 //! so a plotter can draw it and a cutter can cut it. A motif is drawn once

@@ -1,5 +1,5 @@
-//! A stipple dot as a pen draws it: ink of the dot's radius, with no
-//! unpainted hole.
+//! A dot as a pen draws it (a stipple's, a same-komon ground's): ink of
+//! the dot's radius, with no unpainted hole.
 //!
 //! A circle drawn round a site with a pen as wide as the circle is small
 //! is a ring — a donut with paper in the middle, so a dark tone reads as
