@@ -7,6 +7,7 @@
 
 mod cli;
 mod compat;
+mod design_reference;
 mod determinism;
 mod fill_cli;
 mod fuzz_regressions;

@@ -54,7 +54,7 @@ families! {
             /// Tree sets, each along its own centre line.
             #[serde(default)]
             trees: many Trees(TreeSetSpec) by tree_set,
-            /// A background pattern composited into a mask (SPEC §1.6).
+            /// A background pattern composited into a mask (docs/SPEC.md §1.6).
             #[serde(default, skip_serializing_if = "Option::is_none")]
             background: one Background(BackgroundSpec) by background::background,
         }

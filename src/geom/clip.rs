@@ -1,5 +1,5 @@
 //! Clipping open strokes by a region: the parts of a stroke inside and the
-//! parts outside (SPEC §2.4 "draw only inside that region", and hidden
+//! parts outside (docs/SPEC.md §2.4 "draw only inside that region", and hidden
 //! lines for occlusion).
 //!
 //! The stroke keeps its curves: each of its segments is cut at the

@@ -1,6 +1,6 @@
 //! Offsetting regions: grow or shrink a region by a distance with round
 //! joins, and the contour lines of a region (successive inward offsets,
-//! SPEC §2.1 `contour_line`).
+//! docs/SPEC.md §2.1 `contour_line`).
 //!
 //! Method: i_overlay's polygon `outline` on the region's boundary flattened
 //! within `tolerance`, with round joins whose arcs are split finely enough

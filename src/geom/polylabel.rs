@@ -1,6 +1,6 @@
 //! The pole of inaccessibility: the point of a region farthest from its
 //! boundary, i.e. the centre of the largest inscribed circle, together with
-//! that circle's radius (SPEC §2.4 step 2: the zentangle filling loop picks
+//! that circle's radius (docs/SPEC.md §2.4 step 2: the zentangle filling loop picks
 //! the region whose largest inscribed circle is largest).
 //!
 //! The classic grid and priority-queue search (Mapbox's "polylabel") over

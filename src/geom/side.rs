@@ -1,5 +1,5 @@
 //! The "far side of a line" test used for the kimono upper and lower region
-//! lines (SPEC §1.2).
+//! lines (docs/SPEC.md §1.2).
 //!
 //! A point is beyond a line when it lies on the far side of the line
 //! measured along the line's normal at the nearest point, not when its y is

@@ -1,5 +1,5 @@
 //! Parametric natural cubic splines through a list of points, emitted as
-//! exact cubic Béziers (SPEC §1.1, §1.3).
+//! exact cubic Béziers (docs/SPEC.md §1.1, §1.3).
 //!
 //! The parameter is the cumulative chord length, not x, so a line may run
 //! vertically or loop back on itself. Both ends are "natural" (S'' = 0).

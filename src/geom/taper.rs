@@ -1,5 +1,5 @@
 //! Tapered limb outlines: a centre line turned into a closed shape whose
-//! width falls smoothly from base to tip (SPEC §1.3 "taper").
+//! width falls smoothly from base to tip (docs/SPEC.md §1.3 "taper").
 
 use kurbo::{BezPath, Point, Vec2};
 

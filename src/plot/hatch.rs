@@ -1,4 +1,4 @@
-//! Hatching: fills become parallel pen lines (SPEC §6 "fills become
+//! Hatching: fills become parallel pen lines (docs/SPEC.md §6 "fills become
 //! hatching (angle, spacing, cross-hatch)").
 //!
 //! A filled region is cut by parallel scanlines on a grid aligned to the

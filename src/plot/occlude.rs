@@ -1,5 +1,5 @@
 //! Hidden lines: closed shapes in front hide the strokes behind them
-//! (SPEC §0 "the plot pipeline turns depth into occlusion", §6).
+//! (docs/SPEC.md §0 "the plot pipeline turns depth into occlusion", §6).
 //!
 //! **Paint order.** Layers back to front ([`Scene::layers_back_to_front`]:
 //! largest depth first, equal depths in description order); within a

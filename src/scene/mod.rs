@@ -2,7 +2,7 @@
 //!
 //! Generators build [`Group`]s of [`StyledPath`]s (each a `kurbo::BezPath`);
 //! the plot pipeline and the writers only read them. A [`Layer`] carries both
-//! meanings of "layer" in SPEC §0: its `depth` (what is in front of what) and
+//! meanings of "layer" in docs/SPEC.md §0: its `depth` (what is in front of what) and
 //! its `pen` (which physical pen draws it). Ids are stable: they are made from
 //! names and indices in the scene description, never from memory addresses or
 //! hash order, so they are the same on every run.

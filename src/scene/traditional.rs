@@ -1,5 +1,5 @@
 //! Traditional Japanese colours and the palettes a dyer would choose
-//! from them (SPEC §1.6; issue "kimono craft", item 5).
+//! from them (docs/SPEC.md §1.6; issue "kimono craft", item 5).
 //!
 //! **Where the values come from.** Every colour is one of the traditional
 //! colour names (和色名) of JIS Z 8102:2001 *Names of non-luminous object

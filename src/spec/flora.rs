@@ -1,7 +1,7 @@
 //! The ornament parts of a description that several families share:
-//! motifs by name or file, flowers and leaves on limbs (SPEC §1.5), paint
+//! motifs by name or file, flowers and leaves on limbs (docs/SPEC.md §1.5), paint
 //! and shading, and the final adjustment of single trees, flowers and
-//! leaves by id (SPEC §1, design step 4).
+//! leaves by id (docs/SPEC.md §1, design step 4).
 //!
 //! Decisions where the source is silent:
 //!
@@ -21,7 +21,7 @@ use crate::error::{Error, Result};
 use crate::scene::traditional::Palette;
 use crate::scene::Color;
 
-/// A built-in vector motif (SPEC §1.5): flowers, leaves, and shapes for
+/// A built-in vector motif (docs/SPEC.md §1.5): flowers, leaves, and shapes for
 /// background stamps and tiles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -171,7 +171,7 @@ pub enum Assign {
     Type2,
 }
 
-/// Which flowers are drawn largest (SPEC §1 "the main flower is the
+/// Which flowers are drawn largest (docs/SPEC.md §1 "the main flower is the
 /// largest").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -343,7 +343,7 @@ pub enum FlowerSites {
     Vertices,
 }
 
-/// Flowers of a tree set (SPEC §1.5).
+/// Flowers of a tree set (docs/SPEC.md §1.5).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FlowerSpec {

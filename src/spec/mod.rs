@@ -297,7 +297,7 @@ fn default_pen_width() -> f64 {
 /// A list of control points `[[x, y], …]` in mm.
 pub type Points = Vec<[f64; 2]>;
 
-/// The overall flow (SPEC §1, "Flow"): lines bounding the pattern.
+/// The overall flow (docs/SPEC.md §1, "Flow"): lines bounding the pattern.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RegionLinesSpec {

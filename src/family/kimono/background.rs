@@ -1,4 +1,4 @@
-//! Background layers (SPEC §1.6, [000 §3.3, §4.9–4.10]): a mask grown from
+//! Background layers (docs/SPEC.md §1.6, [000 §3.3, §4.9–4.10]): a mask grown from
 //! hidden trees, and a pattern composited only inside it.
 //!
 //! **Mask.** `count` hidden trees stand along the background's centre line

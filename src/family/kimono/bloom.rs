@@ -1,4 +1,4 @@
-//! Flowers and leaves on a grown tree (SPEC §1.5, [000 §4.6–4.8]).
+//! Flowers and leaves on a grown tree (docs/SPEC.md §1.5, [000 §4.6–4.8]).
 //!
 //! * **Flowers** sit at the tips of the limbs (trunk first, then in the
 //!   order the limbs grew) or at every vertex but the root. Type 1 gives

@@ -1,8 +1,8 @@
-//! Kimono plant patterns (SPEC §1): the overall flow (upper and lower
+//! Kimono plant patterns (docs/SPEC.md §1): the overall flow (upper and lower
 //! region lines) and tree sets placed along their centre lines.
 //!
 //! A tree set puts `count` trees at even arc-length spacing along its centre
-//! line (SPEC §1.4): tree `i` stands at arc length `L·(i + ½)/count`,
+//! line (docs/SPEC.md §1.4): tree `i` stands at arc length `L·(i + ½)/count`,
 //! perpendicular to the line on its upper side or along it, then turned by
 //! the set's and the tree's `rotate`. Every tree has the id `tree-N` inside
 //! its set, and per-tree overrides (root, rotate, scale, parameters) are

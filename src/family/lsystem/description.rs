@@ -1,4 +1,4 @@
-//! `[[layers.lsystem]]`: an L-system (SPEC §4) — the rules of *The
+//! `[[layers.lsystem]]`: an L-system (docs/SPEC.md §4) — the rules of *The
 //! Algorithmic Beauty of Plants* drawn by a 3D turtle and projected to the
 //! page, or the stroke-guided Sketching L-System (source 003) grown along a
 //! stroke.

@@ -1,4 +1,4 @@
-//! The `lsystem` family (SPEC §4): an L-system's 3D skeleton (from the
+//! The `lsystem` family (docs/SPEC.md §4): an L-system's 3D skeleton (from the
 //! engine in [`crate::family::lsystem::engine`]) seen from its view, placed on the page,
 //! and drawn as centre strokes or as outlines as wide as the turtle's
 //! width.

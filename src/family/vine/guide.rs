@@ -1,4 +1,4 @@
-//! A vine along a line on the page (SPEC §5, "2D vines"): grown round a
+//! A vine along a line on the page (docs/SPEC.md §5, "2D vines"): grown round a
 //! straight upright pole as long as the line, then bent onto the line, so
 //! that it winds over and under a rod laid along it.
 //!

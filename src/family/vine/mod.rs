@@ -1,4 +1,4 @@
-//! The `vine` family (SPEC §5): a twining vine grown in 3D round its
+//! The `vine` family (docs/SPEC.md §5): a twining vine grown in 3D round its
 //! supports ([`crate::family::vine::engine`]), seen through a camera, and drawn as pen
 //! lines with the hidden ones removed.
 //!

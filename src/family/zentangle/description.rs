@@ -1,4 +1,4 @@
-//! `[[layers.zentangle]]`: zentangle fills (SPEC §2) — the filling
+//! `[[layers.zentangle]]`: zentangle fills (docs/SPEC.md §2) — the filling
 //! process of the source paper in exact vector form: the white region
 //! with the largest inscribed circle gets the procedure its seed names,
 //! drawn only inside it; the drawing splits it into new regions with new
@@ -57,7 +57,7 @@ pub struct ZentangleSpec {
     #[serde(default = "default_smallest")]
     pub smallest: f64,
     /// How much each element is deformed by hand (the free-form
-    /// deformation of SPEC §2.2, as a fraction of the paper's amount:
+    /// deformation of docs/SPEC.md §2.2, as a fraction of the paper's amount:
     /// control points move up to half a lattice cell × this; 0–2,
     /// default 0.6 — the paper's full amount turns circles into blobs).
     #[serde(default = "default_wobble")]

@@ -1,7 +1,7 @@
-//! The elements of a tangle (SPEC §2.1, the paper's 図4 basic shapes and
+//! The elements of a tangle (docs/SPEC.md §2.1, the paper's 図4 basic shapes and
 //! 図7 compound shapes) as exact vector geometry in the square [−1, 1]²,
 //! y down as on the page, and their placement and hand-drawn deformation
-//! (SPEC §2.2).
+//! (docs/SPEC.md §2.2).
 //!
 //! An element is a list of [`Mark`]s in painter's order: a later mark
 //! paints over the earlier ones where its interior lies. A mark is a line
@@ -77,7 +77,7 @@ const PARADOX_STEP: f64 = 0.15;
 /// outline: below it the lines run together at any pen width.
 const PARADOX_MIN_SIZE: f64 = 0.08;
 
-/// A zentangle element (SPEC §2.1): the paper's 14 basic shapes (図4)
+/// A zentangle element (docs/SPEC.md §2.1): the paper's 14 basic shapes (図4)
 /// and 12 compound ones (図7 and the tables' `mtr2`, `msq3`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum Shape {
@@ -262,14 +262,14 @@ impl Mark {
     }
 
     /// The mark deformed by `lattice` within `tolerance` (the `[f p]` of
-    /// SPEC §2.2; see [`deform`]).
+    /// docs/SPEC.md §2.2; see [`deform`]).
     pub(crate) fn deformed(&self, lattice: &Lattice, tolerance: f64) -> Mark {
         Mark::new(deform(&self.path, lattice, tolerance), self.paint)
     }
 }
 
 /// `marks` deformed by one lattice fitted to [`UNIT`] whose control points
-/// are jittered by up to `rx/2`, `ry/2` lattice spacings (SPEC §2.2; the
+/// are jittered by up to `rx/2`, `ry/2` lattice spacings (docs/SPEC.md §2.2; the
 /// paper's `F` with `rx = ry = 1` moves a point up to half a cell), within
 /// `tolerance` in unit coordinates (an element drawn `s` mm wide wants the
 /// output tolerance divided by `s/2`).

@@ -1,4 +1,4 @@
-//! Free-form deformation by a 4×4 control lattice (SPEC §2.2, the
+//! Free-form deformation by a 4×4 control lattice (docs/SPEC.md §2.2, the
 //! zentangle hand-drawn wobble `[f p]`).
 //!
 //! The lattice is fitted to a box; control point `(i, j)` starts at
@@ -82,7 +82,7 @@ impl Lattice {
     /// A lattice over `bounds` whose control points are each moved by
     /// `s·u + t·v`, where `u = (w/3, 0)` and `v = (0, h/3)` are the lattice
     /// spacings and `s`, `t` are uniform in `[−rx/2, rx/2)` and
-    /// `[−ry/2, ry/2)` (SPEC §2.2). `rx = ry = 1` lets a control point move
+    /// `[−ry/2, ry/2)` (docs/SPEC.md §2.2). `rx = ry = 1` lets a control point move
     /// up to half a cell each way.
     ///
     /// Numbers are drawn row by row (`j` = 0..4 along y, `i` = 0..4 along x),

@@ -1,4 +1,4 @@
-//! The filling loop (SPEC §2.4, the paper's §5.3) in vector form: the
+//! The filling loop (docs/SPEC.md §2.4, the paper's §5.3) in vector form: the
 //! white regions are exact regions, each with its seed and its largest
 //! inscribed circle (found once, when the region is made); a step takes
 //! the region whose circle is largest, draws the procedure its seed names

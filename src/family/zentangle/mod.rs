@@ -1,4 +1,4 @@
-//! The `zentangle` family (SPEC §2): the filling process of the zentangle
+//! The `zentangle` family (docs/SPEC.md §2): the filling process of the zentangle
 //! paper in exact vector form (see [`ZentangleSpec`]).
 //!
 //! - `element`: the 26 elements (basic and compound shapes) as marks in

@@ -1,4 +1,4 @@
-//! Placement templates (SPEC §2.1, the paper's 図8): where the elements
+//! Placement templates (docs/SPEC.md §2.1, the paper's 図8): where the elements
 //! of a symmetric pattern go. Nothing is drawn here: each template returns
 //! placed instances, an [`Affine`] that maps the element square
 //! [`UNIT`] onto the page and the slot (a–d) saying which of the
@@ -31,7 +31,7 @@
 //! outline instead of on a lattice: rows that bend with it.
 //!
 //! Lattices are anchored at a given centre (the region's box centre plus
-//! the procedure's jitter, SPEC §2.4) and cover the box: every instance
+//! the procedure's jitter, docs/SPEC.md §2.4) and cover the box: every instance
 //! whose square meets the box is returned, so that clipping to the region
 //! leaves no gap at its edge. `size` is the lattice step, and an instance
 //! maps [`UNIT`] onto a square of side `size` (elements touch their

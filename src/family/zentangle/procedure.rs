@@ -1,4 +1,4 @@
-//! The twenty drawing procedures of the paper's table 1 (SPEC §2.3) and
+//! The twenty drawing procedures of the paper's table 1 (docs/SPEC.md §2.3) and
 //! their seed groups: what each draws into a region, with which elements
 //! and template, and which procedure each white interior it paints may
 //! call next (its seed).

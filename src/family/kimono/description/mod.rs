@@ -1,6 +1,6 @@
-//! The kimono family's tables: tree sets (SPEC §1.2–1.4: the rule, the
+//! The kimono family's tables: tree sets (docs/SPEC.md §1.2–1.4: the rule, the
 //! centre line the trees stand on, their parameters, per-tree overrides,
-//! and the limb drawing of a layer) and backgrounds (SPEC §1.6: a mask
+//! and the limb drawing of a layer) and backgrounds (docs/SPEC.md §1.6: a mask
 //! from hidden trees or mist bands, and a pattern clipped to it).
 
 mod params;
@@ -17,7 +17,7 @@ use crate::spec::flora::size;
 use crate::spec::validate::{point, points, range};
 use crate::spec::{FlowerSpec, LeavesSpec, MotifKind, MotifRef, PaintSpec, Points};
 
-/// How limbs become paths (SPEC §1.3).
+/// How limbs become paths (docs/SPEC.md §1.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LimbStyle {
@@ -76,7 +76,7 @@ fn default_bow() -> f64 {
     0.08
 }
 
-/// The eight tree rules of SPEC §1.2.
+/// The eight tree rules of docs/SPEC.md §1.2.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TreeRule {
@@ -112,7 +112,7 @@ impl TreeRule {
     ];
 }
 
-/// How trees stand on their centre line (SPEC §1.4).
+/// How trees stand on their centre line (docs/SPEC.md §1.4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Growth {
@@ -279,7 +279,7 @@ impl Rhythm {
     }
 }
 
-/// Final adjustment of one tree (SPEC §1.4).
+/// Final adjustment of one tree (docs/SPEC.md §1.4).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TreeOverride {
@@ -373,12 +373,12 @@ impl TreeSetSpec {
     }
 }
 
-/// A background layer (SPEC §1.6): a mask grown from hidden trees and a
+/// A background layer (docs/SPEC.md §1.6): a mask grown from hidden trees and a
 /// pattern clipped to it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BackgroundSpec {
-    /// Mask generation mode, 1–4 (see SPEC §1.6; default 1).
+    /// Mask generation mode, 1–4 (see docs/SPEC.md §1.6; default 1).
     #[serde(default = "default_composite")]
     pub composite: u8,
     /// Mist bands (egasumi) instead of stamps on hidden trees: the mask is
@@ -422,7 +422,7 @@ pub struct BackgroundSpec {
     /// keeps the source's union of stamps, a string of balloons.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cloud: Option<f64>,
-    /// Pattern 1–5 composited into the mask (SPEC §1.6), or 0: none, the
+    /// Pattern 1–5 composited into the mask (docs/SPEC.md §1.6), or 0: none, the
     /// mask's outline alone (for a later layer to fill).
     pub pattern: u8,
     /// The pattern's motifs: none for 0 and 1; one for 5; one or two for

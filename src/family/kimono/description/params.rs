@@ -1,4 +1,4 @@
-//! Tree rule parameters (SPEC §1.2, table 3.1 of the source), defined once.
+//! Tree rule parameters (docs/SPEC.md §1.2, table 3.1 of the source), defined once.
 //!
 //! One macro invocation lists every parameter with its default and its
 //! allowed range; from it come the optional-field file struct

@@ -1,5 +1,5 @@
 //! Two-point limbs: a chord bowed sideways into a single cubic Bézier
-//! (SPEC §1.3, eqs. 5–7 of the source).
+//! (docs/SPEC.md §1.3, eqs. 5–7 of the source).
 
 use kurbo::{CubicBez, Point};
 

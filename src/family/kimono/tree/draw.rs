@@ -1,4 +1,4 @@
-//! Turning a skeleton into paths (SPEC §1.3): smooth centre curves, then
+//! Turning a skeleton into paths (docs/SPEC.md §1.3): smooth centre curves, then
 //! either a tapered closed outline per limb or a single centre stroke.
 //!
 //! * A limb of two points becomes a cubic Bézier bowed towards the limb's

@@ -1,4 +1,4 @@
-//! The eight tree rules of the source (SPEC §1.2, [000 §3.1]) as vertex
+//! The eight tree rules of the source (docs/SPEC.md §1.2, [000 §3.1]) as vertex
 //! skeletons: polylines ("limbs") with their kind, side and parent.
 //!
 //! The rules are transcribed from the pseudo-code of the thesis:

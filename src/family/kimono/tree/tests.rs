@@ -353,7 +353,7 @@ fn rule_strategy() -> impl Strategy<Value = TreeRule> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(96))]
 
-    /// SPEC §1.2: no vertex of any tree lies beyond the upper region line,
+    /// docs/SPEC.md §1.2: no vertex of any tree lies beyond the upper region line,
     /// whatever the rule and parameters.
     #[test]
     fn no_vertex_beyond_the_upper_line(

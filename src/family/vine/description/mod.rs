@@ -1,4 +1,4 @@
-//! `[[layers.vine]]`: a twining vine (SPEC §5, source 004) grown in 3D
+//! `[[layers.vine]]`: a twining vine (docs/SPEC.md §5, source 004) grown in 3D
 //! round its supports and drawn through a camera with hidden lines.
 //!
 //! The growth fields are the thesis' parameters (表3.1) with its base
