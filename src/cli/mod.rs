@@ -39,7 +39,8 @@ enum Command {
     /// Run the plot pipeline on any SVG and write SVG, G-code or HPGL.
     ///
     /// Stages run in a fixed order: transform, hatch, occlude, then per pen
-    /// merge, simplify, sort, multipass. Only the stages asked for run.
+    /// dedupe, merge, debris, simplify, sort, multipass. Only the stages
+    /// asked for run.
     Plot(plot::PlotArgs),
     /// Path count, pen-down and pen-up length and plot time of an SVG.
     Stats(plot::StatsArgs),

@@ -416,7 +416,7 @@ pub struct BackgroundSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stamp_height: Option<f64>,
     /// Rounds the union of stamps into clouds (kumo), mm (0–500; default
-    /// half the stamp width): the mask is grown by this much, then shrunk
+    /// a quarter of the stamp width): the mask is grown by this much, then shrunk
     /// by as much (a closing), which fills the notches between stamps with
     /// arcs of this radius and joins stamps closer than twice it. `0`
     /// keeps the source's union of stamps, a string of balloons.

@@ -69,7 +69,8 @@ pub struct VineSpec {
     /// Cotyledons: 0, 1 (the default) or 2 leaves at the first node.
     #[serde(default = "one")]
     pub cotyledons: u32,
-    /// Leaf size γ, mm (0–1000, default 12): half the blade's length.
+    /// Leaf size γ, mm (0–1000, default 12): half the blade's length
+    /// (the diagonal of the thesis' square leaf).
     #[serde(default = "default_leaf_size")]
     pub leaf_size: f64,
     /// The direction the light comes from, `[x, y, z]` (default `[0, 0.5,

@@ -70,8 +70,8 @@ pub struct VineParams {
     pub leaves: u32,
     /// Leaves at node 0 (the cotyledons): 0, 1 or 2 (1).
     pub cotyledons: u32,
-    /// Leaf size γ, mm: half the diagonal of the thesis' square leaf
-    /// (0–1000; 12). 0 grows no leaves.
+    /// Leaf size γ, mm: half the blade's length, the diagonal of the
+    /// thesis' square leaf (0–1000; 12). 0 grows no leaves.
     pub leaf_size: f64,
     /// Where the seed sprouts (the origin). It must be at least `radius`
     /// away from every support.
