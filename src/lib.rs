@@ -73,6 +73,7 @@ use {clap as _, indicatif as _};
 mod cancel;
 mod error;
 mod family;
+#[cfg(feature = "fuzzing")]
 pub mod fuzz;
 pub mod geom;
 pub mod input;
