@@ -19,97 +19,88 @@ use crate::family::Family;
 use crate::spec::validate::range;
 use crate::spec::{one_stroke, FlowLine, MotifKind, MotifRef, Points};
 
-/// A twining vine on a layer.
+/// A twining vine on a layer. A field left out takes its value from
+/// [`VineSpec::default`], whose growth fields are
+/// [`VineParams::default`]'s: the simulation's defaults are the
+/// description's, written once.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct VineSpec {
     /// Id of the vine, unique in its layer (default `vine-K`). The plant's
     /// randomness is keyed by it alone, so the same table in two layers
     /// (each with its own `draw`) grows the same plant: the stem with one
     /// pen, the leaves with another.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub id: Option<String>,
     /// Internode length l, mm (1–1000, default 60): the gap between leaves.
-    #[serde(default = "default_internode")]
     pub internode: f64,
     /// Stem radius r, mm (0.05–100, default 2).
-    #[serde(default = "default_radius")]
     pub radius: f64,
     /// `"left"` (the default: counter-clockwise seen from below) or
     /// `"right"` (clockwise seen from below).
-    #[serde(default)]
     pub twining: Twining,
     /// Growth interval t: time between two points of the stem (0.1–1000,
     /// default 10); smaller grows faster, so the tip reaches further before
     /// it meets a support.
-    #[serde(default = "default_interval")]
     pub interval: f64,
     /// Circumnutation angle θp of the tip from the vertical, degrees
     /// (1–80, default 18); larger spreads wider and coils tighter.
-    #[serde(default = "default_angle")]
     pub angle: f64,
     /// Nodes above the cotyledons that do not circumnutate, U (0–20,
     /// default 1): more gives a longer untwined stem at the base.
-    #[serde(default = "default_untwined")]
     pub untwined: u32,
     /// Points per internode d (2–64, default 12; made even).
-    #[serde(default = "default_steps")]
     pub steps: u32,
     /// Time the tip takes to turn once (1–100000, default 240: one turn
     /// per two internodes at t = 10).
-    #[serde(default = "default_period")]
     pub period: f64,
     /// Internodes grown in all, every apex together (1–2000, default 24).
-    #[serde(default = "default_internodes")]
     pub internodes: u32,
     /// Leaves per node: 0 (none), 1 (alternate, the default) or 2
     /// (opposite).
-    #[serde(default = "one")]
     pub leaves: u32,
     /// Cotyledons: 0, 1 (the default) or 2 leaves at the first node.
-    #[serde(default = "one")]
     pub cotyledons: u32,
     /// Leaf size γ, mm (0–1000, default 12): half the blade's length
     /// (the diagonal of the thesis' square leaf).
-    #[serde(default = "default_leaf_size")]
     pub leaf_size: f64,
     /// The direction the light comes from, `[x, y, z]` (default `[0, 0.5,
     /// 1]`: from the front and above): every leaf blade turns its face
     /// towards it, then droops 30° and rolls a little at random.
-    #[serde(default = "default_light", skip_serializing_if = "is_default_light")]
+    #[serde(skip_serializing_if = "is_default_light")]
     pub light: [f64; 3],
     /// Where the seeds sprout, `[x, y, z]` mm (y up; default one at the
     /// origin): one plant each, all alike but for chance, seen together
     /// (each hides the others' lines).
-    #[serde(default = "origin", skip_serializing_if = "is_origin")]
+    #[serde(skip_serializing_if = "is_origin")]
     pub roots: Vec<[f64; 3]>,
     /// What the vines climb (default: one pole of radius 6, 400 tall, 20
     /// to the right of the first root); `supports = []` for none.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub supports: Option<Vec<SupportSpec>>,
     /// Where the drawing is seen from (default `"front"`): a preset
     /// (`"front"`, `"three-quarter"`, `"below"`), an orbit round the middle
     /// of the plant and its supports (`{ turn = 30, tilt = 15 }`, degrees),
     /// or a camera placed by hand (`{ eye = [..], target = [..] }`); see
     /// [`CameraSpec`].
-    #[serde(default, skip_serializing_if = "CameraSpec::is_front")]
+    #[serde(skip_serializing_if = "CameraSpec::is_front")]
     pub camera: CameraSpec,
     /// The box `[x0, y0, x1, y1]` (mm) the drawing is fitted into, aspect
     /// kept, centred (default: the page inside its margins).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub fit: Option<[f64; 4]>,
     /// What this table draws (default all): `"stem"`, `"leaves"`,
     /// `"supports"`. Hidden lines are always removed against all of them.
-    #[serde(default = "all_parts", skip_serializing_if = "is_all_parts")]
+    #[serde(skip_serializing_if = "is_all_parts")]
     pub draw: Vec<Part>,
     /// The leaf motif mapped onto each leaf blade (default `"leaf"`).
-    #[serde(default = "default_leaf", skip_serializing_if = "is_default_leaf")]
+    #[serde(skip_serializing_if = "is_default_leaf")]
     pub leaf: MotifRef,
     /// Grown along a line on the page instead (a border): the vine winds
     /// over and under a rod laid along it, seen from the front, in page
     /// millimetres. Then `supports`, `roots`, `camera` and `fit` are not
     /// used.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub guide: Option<GuideSpec>,
 }
 
@@ -236,41 +227,8 @@ fn unit_scale() -> f64 {
     1.0
 }
 
-fn default_internode() -> f64 {
-    60.0
-}
-fn default_radius() -> f64 {
-    2.0
-}
-fn default_interval() -> f64 {
-    10.0
-}
-fn default_angle() -> f64 {
-    18.0
-}
-fn default_untwined() -> u32 {
-    1
-}
-fn default_steps() -> u32 {
-    12
-}
-fn default_period() -> f64 {
-    240.0
-}
-fn default_internodes() -> u32 {
-    24
-}
-fn default_leaf_size() -> f64 {
-    12.0
-}
-fn one() -> u32 {
-    1
-}
-fn origin() -> Vec<[f64; 3]> {
-    vec![[0.0; 3]]
-}
 fn is_origin(p: &Vec<[f64; 3]>) -> bool {
-    *p == origin()
+    *p == [VineParams::default().base.to_array()]
 }
 fn all_parts() -> Vec<Part> {
     vec![Part::Stem, Part::Leaves, Part::Supports]
@@ -281,34 +239,34 @@ fn is_all_parts(p: &Vec<Part>) -> bool {
 fn default_leaf() -> MotifRef {
     MotifRef::Name(MotifKind::Leaf)
 }
-fn default_light() -> [f64; 3] {
-    [0.0, 0.5, 1.0]
-}
 fn is_default_light(l: &[f64; 3]) -> bool {
-    *l == default_light()
+    *l == VineParams::default().light.to_array()
 }
 fn is_default_leaf(m: &MotifRef) -> bool {
     *m == default_leaf()
 }
 
 impl Default for VineSpec {
+    /// The thesis' base vine ([`VineParams::default`]) from the origin,
+    /// round the default pole, seen from the front, every part drawn.
     fn default() -> Self {
+        let p = VineParams::default();
         VineSpec {
             id: None,
-            internode: default_internode(),
-            radius: default_radius(),
-            twining: Twining::default(),
-            interval: default_interval(),
-            angle: default_angle(),
-            untwined: default_untwined(),
-            steps: default_steps(),
-            period: default_period(),
-            internodes: default_internodes(),
-            leaves: 1,
-            cotyledons: 1,
-            leaf_size: default_leaf_size(),
-            light: default_light(),
-            roots: origin(),
+            internode: p.internode,
+            radius: p.radius,
+            twining: p.twining,
+            interval: p.interval,
+            angle: p.angle,
+            untwined: p.untwined,
+            steps: p.steps,
+            period: p.period,
+            internodes: p.internodes,
+            leaves: p.leaves,
+            cotyledons: p.cotyledons,
+            leaf_size: p.leaf_size,
+            light: p.light.to_array(),
+            roots: vec![p.base.to_array()],
             supports: None,
             camera: CameraSpec::default(),
             fit: None,
