@@ -1,7 +1,8 @@
 //! moyo (模様, "pattern") generates ornamental line art — kimono plant
-//! patterns, zentangle fills, Voronoi patterns, L-systems — as Bézier
-//! paths in a scene graph, and writes layered SVG
-//! that a pen plotter or cutter can run as is, plus PNG previews.
+//! patterns, zentangle fills, Voronoi and Delaunay patterns and stipples,
+//! stroke-guided L-systems, twining vines and wagara grounds — as Bézier
+//! paths in a scene graph, and writes layered SVG that a pen plotter or
+//! cutter can run as is, plus PNG previews, G-code and HPGL.
 //!
 //! Data flows one way:
 //!

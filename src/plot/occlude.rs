@@ -239,7 +239,7 @@ pub fn run_cancellable(scene: &mut Scene, o: &OccludeOptions, cancel: &Cancel) -
         .collect();
     let mut painted = Vec::new();
     for &li in &order {
-        collect(&scene.layers[li].content, page, li, &mut painted)?;
+        gather_painted(&scene.layers[li].content, page, li, &mut painted)?;
     }
 
     if o.silhouettes {
@@ -250,7 +250,7 @@ pub fn run_cancellable(scene: &mut Scene, o: &OccludeOptions, cancel: &Cancel) -
         // Cannot fail: silhouettes are checked as they are made.
         painted.clear();
         for &li in &order {
-            collect(&scene.layers[li].content, page, li, &mut painted)?;
+            gather_painted(&scene.layers[li].content, page, li, &mut painted)?;
         }
     }
 
@@ -402,11 +402,16 @@ enum Outcome {
 
 /// Appends the paths below `group` (whose parent maps to the page by
 /// `outer`) in paint order.
-fn collect(group: &Group, outer: Affine, layer: usize, out: &mut Vec<Painted>) -> Result<()> {
+fn gather_painted(
+    group: &Group,
+    outer: Affine,
+    layer: usize,
+    out: &mut Vec<Painted>,
+) -> Result<()> {
     let here = outer * group.transform;
     for child in &group.children {
         match child {
-            Node::Group(g) => collect(g, here, layer, out)?,
+            Node::Group(g) => gather_painted(g, here, layer, out)?,
             Node::Path(p) => {
                 let page = here * p.path.clone();
                 check_path(&page, &p.id)?;
