@@ -10,25 +10,11 @@
 //! failure.
 
 use std::process::Command;
-use std::sync::OnceLock;
 
 use moyo::plot::stats::{stats, Speeds};
 use moyo::project::Rendered;
-use moyo::templates;
 
-/// Every built-in template, rendered once for all tests here.
-fn rendered() -> &'static [(&'static str, Rendered)] {
-    static RENDERED: OnceLock<Vec<(&'static str, Rendered)>> = OnceLock::new();
-    RENDERED.get_or_init(|| {
-        templates::ALL
-            .iter()
-            .map(|t| {
-                let r = t.render().unwrap_or_else(|e| panic!("{}: {e}", t.name));
-                (t.name, r)
-            })
-            .collect()
-    })
-}
+use crate::rendered;
 
 /// Paths a pen draws: in plotted layers, not fill-only.
 fn drawn_paths(scene: &moyo::Scene) -> usize {
@@ -41,7 +27,8 @@ fn drawn_paths(scene: &moyo::Scene) -> usize {
 
 #[test]
 fn the_svg_holds_only_what_pens_draw_and_the_preview_the_rest() {
-    for (name, r) in rendered() {
+    for (t, r) in rendered::plotted() {
+        let name = t.name;
         let svg = &r.svg;
         // Fill-only paths are written `style="fill:…;stroke:none"`, `%`
         // layers with their name as the label.
@@ -63,7 +50,10 @@ fn the_svg_holds_only_what_pens_draw_and_the_preview_the_rest() {
         let pens = |s: &str| s[s.find("<g id=\"pen-").unwrap()..].to_string();
         assert!(pens(svg) == pens(&preview), "{name}: the pen layers differ");
     }
-    let (_, kimono_1) = rendered().iter().find(|(n, _)| *n == "kimono-1").unwrap();
+    let (_, kimono_1) = rendered::plotted()
+        .iter()
+        .find(|(t, _)| t.name == "kimono-1")
+        .unwrap();
     let preview = kimono_1.preview_svg();
     assert!(preview.contains("inkscape:label=\"%preview fills\""));
     assert!(preview.matches(FILL_ONLY).count() > 20);
@@ -83,9 +73,10 @@ fn vpype_reads_exactly_the_plotted_pens_with_their_ink() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    for (name, rendered) in rendered() {
+    for (t, r) in rendered::plotted() {
+        let name = t.name;
         let svg = dir.path().join(format!("{name}.svg"));
-        std::fs::write(&svg, &rendered.svg).unwrap();
+        std::fs::write(&svg, &r.svg).unwrap();
         let out = Command::new(&vpype)
             .arg("read")
             .args(["--quantization", QUANTIZATION])
@@ -99,7 +90,7 @@ fn vpype_reads_exactly_the_plotted_pens_with_their_ink() {
             String::from_utf8_lossy(&out.stderr)
         );
         let stat = String::from_utf8_lossy(&out.stdout);
-        check_layers(name, rendered, &stat);
+        check_layers(name, r, &stat);
     }
 }
 

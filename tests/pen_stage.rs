@@ -15,6 +15,8 @@ use resvg::tiny_skia::{
     FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, Transform,
 };
 
+use crate::rendered;
+
 /// Resolution of the ink pictures: a 0.25 mm pen is 3 pixels wide.
 const PX_PER_MM: f64 = 12.0;
 
@@ -97,12 +99,8 @@ fn spec(name: &str) -> ValidSpec {
 #[test]
 fn the_pen_stage_keeps_the_ink_and_takes_out_what_a_pen_should_not_draw() {
     let mut failures = Vec::new();
-    for t in templates::ALL {
+    for (t, editing) in rendered::for_editing() {
         let spec = spec(t.name);
-        let library = t.library().unwrap();
-        let editing =
-            project::render_for_editing(&spec, &library, &mut |_| {}, &project::Cancel::default())
-                .unwrap();
         let plotted = editing.pen_ready(&spec).unwrap();
         let (before, after) = (ink(&editing.scene), ink(&plotted.scene));
         let change = (after as f64 - before as f64) / before.max(1) as f64;

@@ -8,7 +8,9 @@
 use kurbo::{PathEl, Rect, Shape};
 use moyo::project::{self, Rendered};
 use moyo::spec::{Format, SceneSpec};
-use moyo::{templates, Layer, Scene};
+use moyo::{Layer, Scene};
+
+use crate::rendered;
 
 /// Decimals of the per-path snapshots: 0.01 mm, enough to see any real
 /// change, coarse enough that float noise (last-bit differences between
@@ -228,10 +230,9 @@ fn every_motif() {
 /// [`summary`]); what it looks like is checked by `golden.rs`.
 #[test]
 fn every_template() {
-    for t in templates::ALL {
-        let rendered = t.render().unwrap_or_else(|e| panic!("{}: {e}", t.name));
-        assert!(rendered.scene.path_count() > 0, "{} draws nothing", t.name);
-        insta::assert_snapshot!(format!("template-{}", t.name), summary(&rendered.scene));
+    for (t, r) in rendered::plotted() {
+        assert!(r.scene.path_count() > 0, "{} draws nothing", t.name);
+        insta::assert_snapshot!(format!("template-{}", t.name), summary(&r.scene));
     }
 }
 

@@ -17,6 +17,7 @@ mod lsystem_cli;
 mod pen_stage;
 mod plot_cli;
 mod readme;
+mod rendered;
 mod resource_bounds;
 mod safe_writes;
 mod snapshots;
