@@ -19,10 +19,11 @@ mkdir -p "$out"
   echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 } | tee "$out/machine.txt"
 
-cargo build --release --bin moyo --example bench
+cargo build --release --bin moyo
+cargo bench --bench bench --no-run
 
 # 1. Library stages and scaling (median of N runs after warm-up).
-target/release/examples/bench "$@" | tee "$out/bench.md"
+cargo bench --quiet --bench bench -- "$@" | tee "$out/bench.md"
 
 # 2. The whole CLI, default design, SVG only and SVG + PNG.
 tmp=$(mktemp -d)

@@ -16,15 +16,16 @@
 //! tree with conditions and constants, and ABOP fig. 1.31a
 //! (context-sensitive, with ignored symbols).
 //!
-//! Everything goes to standard output as a Markdown table. Run it in
-//! release mode (debug timings mean nothing):
+//! Everything goes to standard output as a Markdown table. Run it
+//! with `cargo bench`, which builds it with the release settings (debug
+//! timings mean nothing):
 //!
 //! ```text
-//! cargo run --release --example lsystem_bench            # 5 runs
-//! cargo run --release --example lsystem_bench -- --runs 3
+//! cargo bench --bench lsystem_bench            # 5 runs
+//! cargo bench --bench lsystem_bench -- --runs 3
 //! ```
 
-// `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
+// `unused_crate_dependencies` (Cargo.toml) is for the library: a benchmark uses the library, not each of its dependencies.
 #![allow(unused_crate_dependencies)]
 
 use std::collections::BTreeMap;
@@ -158,6 +159,12 @@ fn main() {
     };
     if let Some(k) = value("--case") {
         measure(&CASES[k.min(CASES.len() - 1)]);
+        return;
+    }
+    // `cargo bench` passes `--bench`; `cargo test --benches` (and
+    // `--all-targets`) runs a benchmark without it, in a test build.
+    if !std::env::args().any(|a| a == "--bench") {
+        eprintln!("nothing timed: run `cargo bench --bench lsystem_bench`");
         return;
     }
     let runs = value("--runs").unwrap_or(5).max(1);

@@ -28,20 +28,21 @@
 //! Everything goes to standard output as Markdown tables, ready to paste into
 //! `BENCHMARKS.md`.
 //!
-//! Run it in release mode (debug timings mean nothing):
+//! Run it with `cargo bench`, which builds it with the release settings
+//! (debug timings mean nothing):
 //!
 //! ```text
-//! cargo run --release --example bench             # 5 runs, 1 warm-up
-//! cargo run --release --example bench -- --quick  # 3 runs, counts up to 300
-//! cargo run --release --example bench -- --runs 11 --warmup 2
-//! cargo run --release --example bench -- --only outline --counts 300,1000,3000
+//! cargo bench --bench bench             # 5 runs, 1 warm-up
+//! cargo bench --bench bench -- --quick  # 3 runs, counts up to 300
+//! cargo bench --bench bench -- --runs 11 --warmup 2
+//! cargo bench --bench bench -- --only outline --counts 300,1000,3000
 //! ```
 //!
 //! `--only` (repeatable) picks sections: `default`, `outline`, `stroke`,
 //! `overrides`, `voronoi`. `--counts` and `--override-counts` replace the tree counts of
 //! the scaling and override sections.
 
-// `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
+// `unused_crate_dependencies` (Cargo.toml) is for the library: a benchmark uses the library, not each of its dependencies.
 #![allow(unused_crate_dependencies)]
 
 use std::hint::black_box;
@@ -96,6 +97,8 @@ impl Config {
                     Some(s) if SECTIONS.contains(&s.as_str()) => c.only.push(s),
                     _ => return Err(format!("--only needs one of {}", SECTIONS.join(", "))),
                 },
+                // Passed by `cargo bench` (see `main`).
+                "--bench" => {}
                 "-h" | "--help" => {
                     println!("{USAGE}");
                     std::process::exit(0);
@@ -110,7 +113,7 @@ impl Config {
     }
 }
 
-const USAGE: &str = "usage: cargo run --release --example bench -- [--quick] \
+const USAGE: &str = "usage: cargo bench --bench bench -- [--quick] \
     [--runs N] [--warmup N] [--counts N,N,…] [--override-counts N,N,…] \
     [--only default|outline|stroke|overrides|voronoi]…";
 
@@ -498,6 +501,12 @@ fn voronoi(cfg: &Config) -> Result<(), moyo::Error> {
 }
 
 fn main() -> ExitCode {
+    // `cargo bench` passes `--bench`; `cargo test --benches` (and
+    // `--all-targets`) runs a benchmark without it, in a test build.
+    if !std::env::args().any(|a| a == "--bench") {
+        eprintln!("nothing timed: run `cargo bench --bench bench`");
+        return ExitCode::SUCCESS;
+    }
     let cfg = match Config::from_args() {
         Ok(c) => c,
         Err(msg) => {
@@ -506,7 +515,7 @@ fn main() -> ExitCode {
         }
     };
     if cfg!(debug_assertions) {
-        eprintln!("warning: debug build; run with --release for meaningful figures");
+        eprintln!("warning: debug build; run with `cargo bench` for meaningful figures");
     }
     let result = (|| {
         if cfg.runs_section("default") {

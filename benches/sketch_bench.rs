@@ -14,15 +14,16 @@
 //! and, for the cost of a step against the shoots it rewrites, the time of
 //! the step after 25, 50 and 100 steps.
 //!
-//! Everything goes to standard output as a Markdown table. Run it in
-//! release mode (debug timings mean nothing):
+//! Everything goes to standard output as a Markdown table. Run it
+//! with `cargo bench`, which builds it with the release settings (debug
+//! timings mean nothing):
 //!
 //! ```text
-//! cargo run --release --example sketch_bench            # 11 runs
-//! cargo run --release --example sketch_bench -- --runs 5
+//! cargo bench --bench sketch_bench            # 11 runs
+//! cargo bench --bench sketch_bench -- --runs 5
 //! ```
 
-// `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
+// `unused_crate_dependencies` (Cargo.toml) is for the library: a benchmark uses the library, not each of its dependencies.
 #![allow(unused_crate_dependencies)]
 
 use std::hint::black_box;
@@ -100,6 +101,12 @@ fn next_step(steps: usize, points: &[DVec2], runs: usize) -> Duration {
 }
 
 fn main() {
+    // `cargo bench` passes `--bench`; `cargo test --benches` (and
+    // `--all-targets`) runs a benchmark without it, in a test build.
+    if !std::env::args().any(|a| a == "--bench") {
+        eprintln!("nothing timed: run `cargo bench --bench sketch_bench`");
+        return;
+    }
     let args: Vec<String> = std::env::args().collect();
     let runs = args
         .iter()

@@ -17,15 +17,16 @@
 //! quarters, so that every line is tested against every triangle in front
 //! of it.
 //!
-//! Everything goes to standard output as a Markdown table. Run it in
-//! release mode (debug timings mean nothing):
+//! Everything goes to standard output as a Markdown table. Run it
+//! with `cargo bench`, which builds it with the release settings (debug
+//! timings mean nothing):
 //!
 //! ```text
-//! cargo run --release --example vine_bench            # 5 runs
-//! cargo run --release --example vine_bench -- --runs 3
+//! cargo bench --bench vine_bench            # 5 runs
+//! cargo bench --bench vine_bench -- --runs 3
 //! ```
 
-// `unused_crate_dependencies` (Cargo.toml) is for the library: an example uses the library, not each of its dependencies.
+// `unused_crate_dependencies` (Cargo.toml) is for the library: a benchmark uses the library, not each of its dependencies.
 #![allow(unused_crate_dependencies)]
 
 use std::fmt::Write as _;
@@ -40,6 +41,12 @@ use moyo::vine::{grow, Supports};
 const PILLAR: &str = "pillar.obj";
 
 fn main() -> Result<(), moyo::Error> {
+    // `cargo bench` passes `--bench`; `cargo test --benches` (and
+    // `--all-targets`) runs a benchmark without it, in a test build.
+    if !std::env::args().any(|a| a == "--bench") {
+        eprintln!("nothing timed: run `cargo bench --bench vine_bench`");
+        return Ok(());
+    }
     let runs = runs();
     println!("| support | internodes | triangles | stems | leaves | paths | grow ms | render ms | png ms |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
