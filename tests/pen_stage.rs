@@ -23,6 +23,10 @@ const PX_PER_MM: f64 = 12.0;
 /// How much the ink may change, as a share of the ink before.
 const MAX_INK_CHANGE: f64 = 0.005;
 
+/// The most ink any square millimetre of a template may hold, in multiples
+/// of what covers it solid for its pen.
+const MAX_DENSEST: f64 = 2.0;
+
 /// Pixels of ink each pen of `scene` puts down, summed over the pens.
 fn ink(scene: &Scene) -> u64 {
     let flat = flatten::by_pen(scene);
@@ -94,8 +98,9 @@ fn spec(name: &str) -> ValidSpec {
 
 /// Every template: the pen stage keeps the ink within half a percent,
 /// leaves at most half a percent of the line drawn twice and of the
-/// strokes debris, and travels no more than 5 % more than `moyo plot
-/// --merge --sort` would leave of what it writes.
+/// strokes debris, no square millimetre past twice solid ink, and travels
+/// no more than 5 % more than `moyo plot --merge --sort` would leave of
+/// what it writes.
 #[test]
 fn the_pen_stage_keeps_the_ink_and_takes_out_what_a_pen_should_not_draw() {
     let mut failures = Vec::new();
@@ -116,6 +121,12 @@ fn the_pen_stage_keeps_the_ink_and_takes_out_what_a_pen_should_not_draw() {
             failures.push(format!(
                 "{}: {:.1} of {:.1} mm drawn twice",
                 t.name, figures.doubled_mm, figures.pen_down_mm
+            ));
+        }
+        if figures.densest > MAX_DENSEST {
+            failures.push(format!(
+                "{}: a square millimetre holds {:.3}× solid ink",
+                t.name, figures.densest
             ));
         }
         if figures.debris as f64 > 0.005 * figures.pen_lifts as f64 {

@@ -282,6 +282,8 @@ fn bad_stage_options_are_refused() {
         &["--dedupe", "NaN"],
         &["--dedupe", "400"],
         &["--debris=-1"],
+        &["--blots", "0.2"],
+        &["--blots", "NaN"],
     ] {
         moyo(&dir)
             .args(["plot", "hem.svg", "-o", "out.svg"])
@@ -290,6 +292,45 @@ fn bad_stage_options_are_refused() {
             .failure()
             .stderr(predicate::str::starts_with("error: "));
         assert!(!dir.path().join("out.svg").exists(), "{args:?}");
+    }
+}
+
+/// Forty strokes converging on one point: a puddle of ink where they meet.
+fn converging_strokes() -> String {
+    let mut paths = String::new();
+    for k in 0..40 {
+        let a = std::f64::consts::TAU * f64::from(k) / 40.0;
+        paths.push_str(&format!(
+            "<path id=\"ray-{k}\" d=\"M {:.3} {:.3} L 50.5 25.5\" stroke=\"black\" stroke-width=\"0.3\" fill=\"none\"/>\n",
+            50.5 + 20.0 * a.cos(),
+            25.5 + 20.0 * a.sin()
+        ));
+    }
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"50mm\" viewBox=\"0 0 100 50\">\n{paths}</svg>"
+    )
+}
+
+#[test]
+fn blots_trims_converging_strokes_until_no_square_millimetre_passes_its_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    fs::write(dir.path().join("rays.svg"), converging_strokes()).unwrap();
+    let before = stats_json(&dir, "rays.svg");
+    // 40 strokes ending in one cell: about 20 mm of a 0.3 mm line.
+    assert!(number(&before, "densest") > 5.0, "{before}");
+    for (args, limit) in [(&["--blots"][..], 2.0), (&["--blots", "1.5"], 1.5)] {
+        moyo(&dir)
+            .args(["plot", "rays.svg", "-o", "thin.svg"])
+            .args(args)
+            .assert()
+            .success();
+        let after = stats_json(&dir, "thin.svg");
+        assert!(number(&after, "densest") <= limit, "{args:?}: {after}");
+        // Every stroke is still there, a little shorter, none cut in two.
+        assert_eq!(number(&after, "paths"), 40.0, "{after}");
+        assert_eq!(number(&after, "pen_lifts"), 40.0, "{after}");
+        let lost = number(&before, "pen_down_mm") - number(&after, "pen_down_mm");
+        assert!(lost > 0.0 && lost < 40.0 * 1.0, "{lost} mm");
     }
 }
 

@@ -96,12 +96,12 @@ fn more_than_ten_million_segments_are_refused_before_the_plot() {
 #[test]
 fn hatching_past_a_million_lines_a_region_is_refused() {
     // A 100 mm square at 0.00005 mm: 2.8 million lines across its
-    // diagonal at the default 45°.
+    // diagonal at the default 45° (inside the outline's clearance).
     plot_is_refused(
         "square.svg",
         &svg(r#"<rect width="100" height="100" fill="black"/>"#),
         &["--hatch", "0.00005"],
-        "hatch.spacing: 0.00005 mm would need 2828428 lines across this region (at most 1000000)",
+        "hatch.spacing: 0.00005 mm would need 2818245 lines across this region (at most 1000000)",
     );
 }
 

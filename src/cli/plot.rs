@@ -11,7 +11,7 @@ use moyo::output::gcode::{GcodeOptions, Origin};
 use moyo::output::hpgl::{CutterOptions, HpglOptions};
 use moyo::output::{write_atomic, SvgOptions};
 use moyo::plot::{
-    self, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
+    self, BlotOptions, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
     OccludeOptions, PlotOptions, SimplifyOptions, SortOptions, Speeds, TransformOptions,
 };
 use moyo::project::{self, PlotFormat, PlotJob, Preview};
@@ -78,6 +78,11 @@ pub(crate) struct PlotArgs {
     /// within TOL mm (default: a quarter of the pen's width).
     #[arg(long, value_name = "TOL", num_args = 0..=1, help_heading = "Stages")]
     dedupe: Option<Option<f64>>,
+    /// Trim line ends where a square millimetre of the paper would hold
+    /// more than LIMIT times the ink that covers it solid (0.5–10,
+    /// default 2): converging lines stop short instead of blotting.
+    #[arg(long, value_name = "LIMIT", num_args = 0..=1, default_missing_value = "2", help_heading = "Stages")]
+    blots: Option<f64>,
     /// Take out strokes shorter than LEN mm that touch other line work of
     /// the same pen (default: the pen's width); isolated dots stay.
     #[arg(long, value_name = "LEN", num_args = 0..=1, help_heading = "Stages")]
@@ -276,6 +281,9 @@ impl PlotArgs {
             dedupe: self
                 .dedupe
                 .map(|tolerance| DedupeOptions::DEFAULT.with_tolerance(tolerance)),
+            blots: self
+                .blots
+                .map(|limit| BlotOptions::DEFAULT.with_limit(limit)),
             debris: self
                 .debris
                 .map(|length| DebrisOptions::DEFAULT.with_length(length)),

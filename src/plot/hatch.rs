@@ -6,10 +6,14 @@
 //! the region's flattened outline (within [`TOLERANCE`]) with the non-zero
 //! rule, holes included. Consecutive lines are then joined back and forth
 //! into runs, each join a short walk along the outline from the end of one
-//! line to the start of the next — so a joined run never leaves the region
-//! (it retraces a little of the outline, which is drawn anyway), and every
-//! join saves a pen lift. Ends on different contours, or farther apart
-//! along the outline than a few spacings, start a new path.
+//! line to the start of the next — so a joined run never leaves the region,
+//! and every join saves a pen lift. Ends on different contours, or farther
+//! apart along the outline than a few spacings, start a new path.
+//!
+//! The outline of a hatched fill stays drawn, so the lines keep
+//! [`OUTLINE_CLEARANCE`] pen widths inside it (beyond any `inset`): the
+//! joins then walk beside the outline instead of drawing it a second time,
+//! while the ink of the lines still meets the outline's.
 
 use kurbo::{Affine, BezPath, Point, Vec2};
 
@@ -27,6 +31,17 @@ pub const MAX_LINES: usize = 1_000_000;
 /// follow an outline nearly parallel to the lines (closer than about 20°)
 /// and would retrace too much of it.
 const MAX_CONNECTOR_SPACINGS: f64 = 3.0;
+
+/// Hatch lines of a fill whose outline is drawn keep this many widths of
+/// the layer's pen inside the outline, on top of the options' `inset`.
+/// The outline's ink reaches half a width inside and a line's ink half a
+/// width beside it, so at 0.6 the two overlap by a tenth of a width (no
+/// paper shows between them) while the joins along the outline run 0.6
+/// widths beside it, not on it (drawn twice, a line needs to lie within a
+/// quarter width: `plot::dedupe`). A band narrower than 1.2 widths gets no
+/// lines: its outline alone inks all of it but a sliver of at most 0.2
+/// widths.
+pub const OUTLINE_CLEARANCE: f64 = 0.6;
 
 /// Pieces of a scanline shorter than this (mm) are dropped: they are where
 /// a line grazes a corner, and would be dots.
@@ -424,7 +439,8 @@ fn hatch_direction(polygons: &[Vec<Point>], angle_deg: f64, spacing: f64) -> Res
 ///
 /// Every path with a fill loses it and keeps its outline; unless the fill
 /// is white (paper: nothing to draw), hatch lines for the area it enclosed
-/// (non-zero rule, like an SVG fill) are added right after it in the same
+/// (non-zero rule, like an SVG fill), [`OUTLINE_CLEARANCE`] widths of the
+/// layer's pen inside the outline, are added right after it in the same
 /// group, with ids `<id>.hatch-<k>`, drawn by the same pen. A path whose
 /// [`Style::hatch`] gives its own spacing is hatched at that spacing (the
 /// other options as given). Spacing, inset and angle are measured on the
@@ -461,22 +477,34 @@ fn run_with(scene: &mut Scene, o: Option<&HatchOptions>) -> Result<()> {
         o.validate()?;
     }
     let page = scene.page_transform();
-    for layer in &mut scene.layers {
-        hatch_group(&mut layer.content, page, o)?;
+    let clearances: Vec<f64> = scene
+        .layers
+        .iter()
+        .map(|l| OUTLINE_CLEARANCE * scene.pen_width(l.pen))
+        .collect();
+    for (layer, clearance) in scene.layers.iter_mut().zip(clearances) {
+        hatch_group(&mut layer.content, page, o, clearance)?;
     }
     Ok(())
 }
 
 const WHITE: Color = Color::rgb(255, 255, 255);
 
-fn hatch_group(group: &mut Group, outer: Affine, o: Option<&HatchOptions>) -> Result<()> {
+/// Hatches the fills in `group`, their lines `clearance` mm (beyond the
+/// options' inset) inside the outline.
+fn hatch_group(
+    group: &mut Group,
+    outer: Affine,
+    o: Option<&HatchOptions>,
+    clearance: f64,
+) -> Result<()> {
     let here = outer * group.transform;
     let children = std::mem::take(&mut group.children);
     let mut out = Vec::with_capacity(children.len());
     for child in children {
         match child {
             Node::Group(mut g) => {
-                hatch_group(&mut g, here, o)?;
+                hatch_group(&mut g, here, o, clearance)?;
                 out.push(Node::Group(g));
             }
             Node::Path(mut p) => {
@@ -498,6 +526,7 @@ fn hatch_group(group: &mut Group, outer: Affine, o: Option<&HatchOptions>) -> Re
                     continue;
                 };
                 p.style.hatch = None;
+                let options = options.with_inset(options.inset + clearance);
                 let lines = if fill == WHITE {
                     Vec::new()
                 } else {
@@ -734,16 +763,20 @@ mod tests {
         );
         let o = HatchOptions::DEFAULT.with_angle_deg(0.0).with_spacing(1.0);
         run(&mut scene, &o).unwrap();
+        let scene_pen = scene.pen_width(1);
         let mut ids = Vec::new();
         let mut fills = 0;
         scene.visit_paths(|_, p, t| {
             ids.push(p.id.clone());
             fills += usize::from(p.style.fill.is_some());
             if p.id.contains(".hatch-") {
-                // Horizontal pieces on the page are 10 mm long.
+                // Horizontal pieces on the page are 10 mm long but for
+                // the outline's clearance at each end.
                 let page = t * p.path.clone();
                 let s = page.segments().next().unwrap();
-                assert!(((s.end() - s.start()).hypot() - 10.0).abs() < 1e-9);
+                let clear = OUTLINE_CLEARANCE * scene_pen;
+                let length = (s.end() - s.start()).hypot();
+                assert!((length - (10.0 - 2.0 * clear)).abs() < 1e-6, "{length}");
             }
         });
         assert_eq!(fills, 0);
@@ -751,6 +784,46 @@ mod tests {
         assert!(ids.contains(&"white".to_string()) && ids.contains(&"plain".to_string()));
         assert!(!ids.iter().any(|i| i.starts_with("white.hatch")));
         assert!(run(&mut scene, &HatchOptions::DEFAULT.with_spacing(0.0)).is_err());
+    }
+
+    #[test]
+    fn lines_and_joins_run_beside_the_drawn_outline_not_on_it() {
+        // A 10 mm square hatched at 45°: every vertex of the hatch (line
+        // ends and the corners its joins turn) lies OUTLINE_CLEARANCE pen
+        // widths inside the outline, and no closer — so a join never
+        // draws the outline again, and the lines' ink still meets the
+        // outline's.
+        let mut g = Group::new("g");
+        g.push_path(
+            "black",
+            Rect::new(0.0, 0.0, 10.0, 10.0).to_path(0.0),
+            Style {
+                fill: Some(Color::BLACK),
+                ..Style::default()
+            },
+        );
+        let mut scene = Scene::one_pen(
+            Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
+            g,
+        );
+        run(&mut scene, &HatchOptions::DEFAULT).unwrap();
+        let clear = OUTLINE_CLEARANCE * scene.pen_width(1);
+        assert!(clear > 0.5 * scene.pen_width(1), "the inks overlap");
+        let mut vertices = 0;
+        scene.visit_paths(|_, p, _| {
+            if !p.id.contains(".hatch-") {
+                return;
+            }
+            // In the square's own units (the group is not transformed).
+            for el in p.path.elements() {
+                if let PathEl::MoveTo(q) | PathEl::LineTo(q) = el {
+                    let d = q.x.min(q.y).min(10.0 - q.x).min(10.0 - q.y);
+                    assert!((d - clear).abs() < TOLERANCE, "{q:?} lies {d} mm inside");
+                    vertices += 1;
+                }
+            }
+        });
+        assert!(vertices > 40, "{vertices}");
     }
 
     #[test]

@@ -1,9 +1,10 @@
 //! The plot pipeline: stages that turn a scene into one a plotter runs well
-//! (hidden lines, hatching, doubled line work, merging, debris,
+//! (hidden lines, hatching, doubled line work, merging, blots, debris,
 //! simplifying, ordering), usable on generated scenes and on imported SVGs
 //! alike. Each stage reads and writes
 //! a [`crate::scene::Scene`]; none generates motifs or writes files.
 
+pub mod blots;
 mod cover;
 pub mod debris;
 pub mod dedupe;
@@ -18,6 +19,7 @@ pub mod sort;
 pub mod stats;
 pub mod transform;
 
+pub use blots::BlotOptions;
 pub use debris::DebrisOptions;
 pub use dedupe::DedupeOptions;
 pub use hatch::HatchOptions;

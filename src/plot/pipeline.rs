@@ -1,7 +1,7 @@
 //! The plot pipeline in its fixed order, every stage optional:
 //!
 //! transform → hatch → occlude → (one layer per pen) → dedupe → merge →
-//! debris → simplify → sort → multipass.
+//! blots → debris → simplify → sort → multipass.
 //!
 //! Geometry is transformed first so that hatch spacing and tolerances are
 //! measured on the final page; fills become hatch lines before hidden lines
@@ -12,22 +12,24 @@
 //! ([`crate::scene::Style::mask`]) leave the scene after hidden-line
 //! removal, which is all they are for.
 //!
-//! The *pen stage* — dedupe, merge, debris, sort — is what makes a drawing
-//! what a pen should draw: no line twice, no slivers, little travel
+//! The *pen stage* — dedupe, merge, blots, debris, sort — is what makes a
+//! drawing what a pen should draw: no line twice, no puddle of ink where
+//! lines converge, no slivers, little travel
 //! ([`PlotOptions::pen_ready`]). Every render runs it unless the
 //! description turns a step off ([`crate::spec::PlotSpec`]); `moyo plot`
 //! runs what its options ask. With merging, strokes are joined before
 //! doubled line work is taken out (an overlap split among short pieces is
 //! weighed whole) and again after (the pieces left join up with what they
-//! meet); debris goes after that, so that pieces that join are not taken
-//! for it.
+//! meet); blots are thinned once strokes are whole (an end is only an end
+//! once nothing joins it), and debris goes last, so that pieces that join
+//! are not taken for it and what thinning leaves of a stroke is weighed.
 
 use serde::{Deserialize, Serialize};
 
 use super::{
-    debris, dedupe, flatten, hatch, merge, multipass, occlude, simplify, sort, transform,
-    DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions, OccludeOptions,
-    SimplifyOptions, SortOptions, TransformOptions,
+    blots, debris, dedupe, flatten, hatch, merge, multipass, occlude, simplify, sort, transform,
+    BlotOptions, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
+    OccludeOptions, SimplifyOptions, SortOptions, TransformOptions,
 };
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
@@ -53,6 +55,10 @@ pub struct PlotOptions {
     /// Join paths whose ends meet.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub merge: Option<MergeOptions>,
+    /// Trim line ends where a square millimetre would hold more ink than
+    /// the limit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blots: Option<BlotOptions>,
     /// Take out strokes shorter than the pen is wide that touch others.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub debris: Option<DebrisOptions>,
@@ -85,11 +91,12 @@ impl PlotOptions {
     }
 
     /// The pen stage alone, every step with its defaults: dedupe, merge,
-    /// debris and sort.
+    /// blots, debris and sort.
     pub fn pen_ready() -> PlotOptions {
         PlotOptions {
             dedupe: Some(DedupeOptions::DEFAULT),
             merge: Some(MergeOptions::DEFAULT),
+            blots: Some(BlotOptions::DEFAULT),
             debris: Some(DebrisOptions::DEFAULT),
             sort: Some(SortOptions::DEFAULT),
             ..PlotOptions::default()
@@ -103,6 +110,7 @@ impl PlotOptions {
         PlotOptions {
             dedupe: None,
             merge: None,
+            blots: None,
             debris: None,
             simplify: None,
             sort: None,
@@ -115,6 +123,7 @@ impl PlotOptions {
     fn per_pen(&self) -> bool {
         self.dedupe.is_some()
             || self.debris.is_some()
+            || self.blots.is_some()
             || self.merge.is_some()
             || self.simplify.is_some()
             || self.sort.is_some()
@@ -153,6 +162,9 @@ impl PlotOptions {
         }
         if let Some(m) = &self.merge {
             finite_range(&format!("{field}.merge.tolerance"), m.tolerance, 0.0, 10.0)?;
+        }
+        if let Some(b) = &self.blots {
+            finite_range(&format!("{field}.blots.limit"), b.limit, 0.5, 10.0)?;
         }
         if let Some(length) = self.debris.and_then(|d| d.length) {
             finite_range(&format!("{field}.debris.length"), length, 0.0, 10.0)?;
@@ -259,6 +271,9 @@ pub fn run_cancellable(mut scene: Scene, o: &PlotOptions, cancel: &Cancel) -> Re
     cancel.check()?;
     if let Some(m) = &o.merge {
         merge::run(&mut flat, m);
+    }
+    if let Some(b) = &o.blots {
+        blots::run(&mut flat, b);
     }
     if let Some(d) = &o.debris {
         debris::run(&mut flat, d);

@@ -2,7 +2,7 @@
 //! types are the stages' own ([`crate::plot`]), so the file and the
 //! library cannot drift apart.
 //!
-//! The pen stage — `dedupe`, `merge`, `debris`, `sort` — runs unless a
+//! The pen stage — `dedupe`, `merge`, `blots`, `debris`, `sort` — runs unless a
 //! step is turned off (`dedupe = false`); a table tunes a step
 //! (`[plot.dedupe]` with `tolerance = 0.05`). The other stages run only
 //! when their table is there (`[plot.occlude]`).
@@ -15,8 +15,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::error::Result;
 use crate::plot::{
-    DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions, OccludeOptions,
-    PlotOptions, SimplifyOptions, SortOptions, TransformOptions,
+    BlotOptions, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
+    OccludeOptions, PlotOptions, SimplifyOptions, SortOptions, TransformOptions,
 };
 
 /// The `[plot]` table.
@@ -39,6 +39,10 @@ pub struct PlotSpec {
     /// Pen stage: join paths whose ends meet. On by default.
     #[serde(default, skip_serializing_if = "Step::is_on")]
     pub merge: Step<MergeOptions>,
+    /// Pen stage: trim line ends where a square millimetre would hold
+    /// more ink than `limit` times solid (default 2). On by default.
+    #[serde(default, skip_serializing_if = "Step::is_on")]
+    pub blots: Step<BlotOptions>,
     /// Pen stage: take out strokes shorter than the pen is wide that touch
     /// others. On by default.
     #[serde(default, skip_serializing_if = "Step::is_on")]
@@ -66,6 +70,7 @@ impl PlotSpec {
         PlotSpec {
             dedupe: Step::Off,
             merge: Step::Off,
+            blots: Step::Off,
             debris: Step::Off,
             sort: Step::Off,
             ..PlotSpec::default()
@@ -80,6 +85,7 @@ impl PlotSpec {
             hatch: self.hatch,
             dedupe: self.dedupe.options(),
             merge: self.merge.options(),
+            blots: self.blots.options(),
             debris: self.debris.options(),
             simplify: self.simplify,
             sort: self.sort.options(),

@@ -6,6 +6,11 @@
 //! with a seed — the one the mark it lies in was given, or its parent's.
 //! Black is finished. A step touches one region and the pieces it makes,
 //! whatever the number of regions (a heap keeps them by circle).
+//!
+//! Beyond the paper (which drew into a frame buffer, where more ink is
+//! only more black), a pen has a limit: a mark that would take a square
+//! millimetre past [`MAX_INK`] times solid ink is left out, so whirls stop
+//! before they converge and small elements stop piling up (`ink`).
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -20,7 +25,17 @@ use crate::family::zentangle::ffd::Lattice;
 use crate::geom::polylabel::pole_of_inaccessibility;
 use crate::geom::region::Region;
 use crate::geom::TOLERANCE;
+use super::ink::{Cells, Ink};
 use crate::rng::RandomStream;
+
+/// No square millimetre gets more than this many times the ink that
+/// covers it solid (for the layer's pen), by the loop's count: a mark's
+/// line, a black part's area over its hatch spacing. The plot draws up to
+/// about a sixth more than that count where elements are a millimetre
+/// across (the joins between hatch lines, outlines a little apart from
+/// their neighbours'), so this stays that far under the 2× every template
+/// is held to after the pen stage (`tests/pen_stage.rs`).
+pub(super) const MAX_INK: f64 = 1.7;
 
 /// A white region waiting to be filled.
 #[derive(Debug, Clone)]
@@ -61,6 +76,9 @@ pub(super) struct Settings<'a> {
     pub(super) retrace: f64,
     /// The pen's width, mm.
     pub(super) pen: f64,
+    /// How far apart black parts are hatched, mm (`None`: filled, no
+    /// lines).
+    pub(super) hatch: Option<f64>,
     /// How often lattices follow the outline (0–1).
     pub(super) follow: f64,
     /// How deep ML plants branch (0: a single stem).
@@ -81,6 +99,8 @@ pub(super) struct Filling<'a> {
     /// The per-stroke bending's own numbers, so that turning it on
     /// changes how the lines are drawn, not what is drawn.
     hand: RandomStream,
+    /// The ink drawn so far.
+    ink: Ink,
 }
 
 impl<'a> Filling<'a> {
@@ -101,6 +121,7 @@ impl<'a> Filling<'a> {
             allowed,
             settings,
             hand,
+            ink: Ink::new(pen, MAX_INK, settings.hatch),
         };
         let marks: Vec<Mark> = lines
             .into_iter()
@@ -118,6 +139,9 @@ impl<'a> Filling<'a> {
             step.strokes.extend(composed.strokes);
             step.black.extend(composed.black);
         }
+        // The lines are the user's: drawn whatever their ink.
+        let drawn = ink_of(&step.strokes, &step.black);
+        filling.ink.add(&drawn);
         Ok((filling, step))
     }
 
@@ -183,6 +207,31 @@ impl<'a> Filling<'a> {
             out.seeds.extend([seed, None]);
         }
         Ok(out)
+    }
+
+    /// The marks of `drawn` that fit under the ink limit, in order, each
+    /// counted with all its line (and hatch) as if nothing covered it: a
+    /// mark that would take a cell past the limit is left out, with its
+    /// seed.
+    fn within_ink(&mut self, drawn: Drawn) -> Drawn {
+        let mut kept = Drawn::default();
+        let mut pending = Cells::default();
+        for (m, seed) in drawn.marks.into_iter().zip(drawn.seeds) {
+            let mut cells = Cells::default();
+            cells.line(&m.path);
+            if m.paint == Paint::Black {
+                cells.black(&m.path);
+            }
+            if self.ink.fits(&cells) {
+                self.ink.add(&cells);
+                pending.merge(cells);
+                kept.marks.push(m);
+                kept.seeds.push(seed);
+            }
+        }
+        // What is drawn of them is counted once composed.
+        self.ink.remove(&pending);
+        kept
     }
 
     /// The white regions left that are wide enough to draw in.
@@ -268,7 +317,10 @@ impl<'a> Filling<'a> {
         if self.settings.retrace > 0.0 {
             drawn = self.retraced(drawn)?;
         }
+        let drawn = self.within_ink(drawn);
         let composed = compose(&area.region, &drawn.marks, pen, flattening(pen))?;
+        let ink = ink_of(&composed.strokes, &composed.black);
+        self.ink.add(&ink);
         for piece in composed.white {
             // Inside a white mark: the seed the mark was given. Elsewhere
             // the piece keeps its region's seed, as its pixels would in the
@@ -282,6 +334,19 @@ impl<'a> Filling<'a> {
             black: composed.black,
         })
     }
+}
+
+/// The ink of `strokes` and of hatching `black` (whose outlines are
+/// strokes of their own marks, or of the lines around the region).
+fn ink_of(strokes: &[BezPath], black: &[Region]) -> Cells {
+    let mut cells = Cells::default();
+    for s in strokes {
+        cells.line(s);
+    }
+    for b in black {
+        cells.black(b.path());
+    }
+    cells
 }
 
 /// `mark` bent by a deformation of its own that moves no point more than

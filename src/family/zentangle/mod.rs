@@ -10,7 +10,8 @@
 //!   seed groups;
 //! - `compose`: what a procedure's marks do to a white region — the
 //!   visible lines, the white pieces left and the black area;
-//! - `filling`: the loop.
+//! - `filling`: the loop;
+//! - `ink`: the ink per square millimetre the loop may not pass.
 //!
 //! Each step is a group `<layer>.<table>.step-K-pP` (step K drew
 //! procedure P) of its lines (`line-I`) and black parts (`black-I`,
@@ -24,6 +25,7 @@ mod compose;
 mod element;
 pub(crate) mod ffd;
 mod filling;
+mod ink;
 mod pattern;
 mod placement;
 mod procedure;
@@ -94,6 +96,7 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         hand: spec.hand,
         retrace: spec.retrace,
         pen,
+        hatch: (spec.black == Black::Hatch).then_some(spec.hatch),
         follow: spec.follow,
         branching: spec.branching,
         tone: spec

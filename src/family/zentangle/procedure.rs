@@ -555,8 +555,9 @@ mod tests {
         );
         let (l1, r1) = ink_by_side("steps = 80\ntone = { formula = \"u\" }\n");
         assert!(r1 > 4.0 * l1, "toned: {l1:.0} left, {r1:.0} right");
-        // Full contrast leaves the white end of the page all but empty.
+        // Full contrast leaves the white end of the page all but empty
+        // (the dark end is as dark as the ink limit lets it be).
         let (l2, r2) = ink_by_side("steps = 80\ntone = { formula = \"u\", contrast = 1 }\n");
-        assert!(r2 > 5.0 * l2, "full contrast: {l2:.0} left, {r2:.0} right");
+        assert!(r2 > 4.0 * l2, "full contrast: {l2:.0} left, {r2:.0} right");
     }
 }

@@ -70,6 +70,7 @@ fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
         hand: 0.4,
         retrace: 0.2,
         pen,
+        hatch: Some(0.5),
         follow: 0.0,
         branching: 2,
         tone: None,
@@ -98,6 +99,24 @@ fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
             assert!(b.area() <= region.area() + 1e-6);
         }
     }
+}
+
+#[test]
+fn whirls_stop_before_they_blot() {
+    // Paradox whirls alone, 120 of them in ever smaller regions: each
+    // turn is a line a little inside the last, so without the ink limit
+    // their last turns converge to several times solid ink.
+    let s = scene("steps = 120\nprocedures = [17]\n");
+    let mut lines = Vec::new();
+    s.visit_paths(|_, p, t| {
+        if p.style.fill.is_none() {
+            lines.push(t * p.path.clone());
+        }
+    });
+    assert!(lines.len() > 500, "{} lines", lines.len());
+    let densest = crate::plot::stats::densest(lines.iter(), s.pen_width(1));
+    // The loop counts a little under what is drawn, and keeps a margin.
+    assert!(densest <= 2.0, "{densest}× solid");
 }
 
 #[test]
