@@ -14,7 +14,7 @@ const BASE: &str = r#"
 version = 1
 seed = 3
 [limits]
-max_paths = 3000
+max_paths = 20000
 [[layers]]
 name = "front"
 [[layers.trees]]

@@ -17,6 +17,7 @@ mod context;
 pub(crate) mod dot;
 pub(crate) mod flora;
 mod flow;
+pub(crate) mod ground;
 pub(crate) mod limb;
 pub(crate) mod place;
 pub(crate) mod region;

@@ -25,7 +25,10 @@
 //! 1. solid: the mask itself, filled (preview) and hatched (pens) — when
 //!    the description gives no paint, a grey fill hatched every 1 mm;
 //! 2. the motifs tiled edge to edge on a grid, alternating like a
-//!    chequerboard (one motif repeats);
+//!    chequerboard (one motif repeats) — a single seigaiha, kikkō or
+//!    shippō tile is drawn as the seamless ground it is cut from
+//!    (`motif::ground`): no frame around each tile, no seam, every line
+//!    once and as long as it runs;
 //! 3. as 2 with `spacing` between tiles, every other column mirrored left
 //!    to right;
 //! 4. motifs at random places, sizes (0.6–1.2×) and angles, about one per
@@ -35,7 +38,8 @@
 //! The mask's outline is drawn unless `outline = false`; the base paint
 //! (`paint`) fills it under patterns 2–5, and its `bokashi` shades it in
 //! line (with the outline, in the mask's path). Ids: `<layer>.background.mask`,
-//! `<layer>.background.tile-<n>`. Later layers can fill the mask's islands
+//! `<layer>.background.tile-<n>` (`….ground` for a seamless ground, one
+//! path of all its strokes). Later layers can fill the mask's islands
 //! (`region.layer`).
 
 use kurbo::{Affine, BezPath, Point, Rect, Shape, Vec2};
@@ -55,7 +59,10 @@ use crate::motif::Context;
 use crate::rng::RandomStream;
 use crate::scene::traditional::Palette;
 use crate::scene::{Color, Group, Style};
-use crate::spec::{BackgroundSpec, LeavesSpec, MistSpec, PaintSpec, TreeSetSpec};
+use crate::motif::ground::{self, Ground, Laid};
+use crate::spec::{
+    BackgroundSpec, LeavesSpec, MistSpec, MotifKind, MotifRef, PaintSpec, TreeSetSpec,
+};
 
 /// Each step of a mist band stands this much of the band's height above
 /// the one below it.
@@ -160,6 +167,37 @@ pub(crate) fn background(
         n: 0,
     };
     let bounds = mask.bounds();
+    if let Some((ground, scale, lines, angle)) = seamless(bg) {
+        // One repeat over the whole mask instead of tiles: no frame, no
+        // seam, every line once. The frame's origin is the page's, so
+        // neighbouring backgrounds of the same ground line up.
+        let laid = Laid::new(bounds, scale, Point::ZERO, angle);
+        let estimate = ground::estimate(ground, scale, lines, laid.window());
+        let what = || format!("background {group_id}: {} at {scale} mm", ground.name());
+        // A ground too fine for its mask fails here, before the work.
+        tiles
+            .cx
+            .budget()
+            .clone()
+            .take(estimate.min(usize::MAX as f64) as usize, what)?;
+        let drawn = laid.draw(&mask, ground, scale, lines, tiles.cx.pen_width())?;
+        // One path, as a tile is: its closed strokes (shippō's circles,
+        // kikkō's hexagons) are lines of one pattern, not shapes hiding
+        // one another when hidden lines are removed.
+        let drawn_strokes = drawn.strokes.len();
+        let mut path = BezPath::new();
+        for stroke in drawn.strokes {
+            path.extend(stroke.elements().iter().copied());
+        }
+        if !path.elements().is_empty() {
+            // Each stroke is a pen's stroke, as a tile was a path.
+            tiles.cx.take_paths(drawn_strokes, what)?;
+            tiles
+                .group
+                .push_path(format!("{group_id}.ground"), path, Style::default());
+        }
+        return Ok(group);
+    }
     match bg.pattern {
         2 | 3 => {
             let mirror = bg.pattern == 3;
@@ -234,6 +272,37 @@ pub(crate) fn background(
         _ => {}
     }
     Ok(group)
+}
+
+/// The seamless ground a tiled pattern draws (with its scale, lines and
+/// turn, matching the tile's size), or `None`: patterns 2 and 3 of one
+/// built-in seigaiha, kikkō or shippō tile at its own proportions (3
+/// without spacing, its mirrored columns being the same) draw the ground
+/// the tiles are cut from, not a grid of framed tiles.
+///
+/// * seigaiha: two fans across a tile, `petals` rings each;
+/// * kikkō: the tile's hexagon (points left and right, the tile's width
+///   across them) in a honeycomb, `petals` + 1 outlines each;
+/// * shippō: circles as wide as a tile, at every tile's centre and corner.
+fn seamless(bg: &BackgroundSpec) -> Option<(Ground, f64, u32, f64)> {
+    if !matches!(bg.pattern, 2 | 3) || bg.height.is_some() || bg.pattern == 3 && bg.spacing != 0.0 {
+        return None;
+    }
+    let [motif] = bg.motifs.as_slice() else {
+        return None;
+    };
+    let (kind, petals) = match motif {
+        MotifRef::Name(kind) => (*kind, None),
+        MotifRef::Built(b) => (b.kind, b.petals),
+        MotifRef::File(_) => return None,
+    };
+    let w = bg.width;
+    match kind {
+        MotifKind::Seigaiha => Some((Ground::Seigaiha, w / 4.0, petals.unwrap_or(4).clamp(1, 5), 0.0)),
+        MotifKind::Kikko => Some((Ground::Kikko, w / 2.0, petals.unwrap_or(1).clamp(1, 2) + 1, 30.0)),
+        MotifKind::Shippo => Some((Ground::Shippo, w / 2.0, 1, 45.0)),
+        _ => None,
+    }
 }
 
 /// Motif units → mm: `width × height` (height from the motif's aspect when

@@ -511,3 +511,58 @@ fn a_rest_after_the_last_tree_is_refused() {
         "{e}"
     );
 }
+
+/// The paths of the background layer of a one-layer scene (A4, the
+/// default region lines) whose background tiles `motifs`.
+fn background_paths(motifs: &str) -> Vec<(String, kurbo::BezPath)> {
+    let table = format!(
+        "composite = 1\ncount = 3\ncentre = [[20, 150], [190, 140]]\n\
+         params = {{ generations = 3, trunk = 12 }}\nstamp_width = 14\n\
+         pattern = 2\nmotifs = {motifs}\nwidth = 10\n"
+    );
+    let text = format!(
+        "version = 1\nseed = 9\n[[layers]]\nname = \"back\"\n[layers.background]\n{table}"
+    );
+    let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
+    let scene = crate::project::build_scene(&spec).unwrap();
+    let mut out = Vec::new();
+    scene.layers[0]
+        .content
+        .visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+            out.push((p.id.clone(), t * p.path.clone()))
+        });
+    out
+}
+
+#[test]
+fn a_single_ground_tile_is_drawn_as_its_seamless_ground() {
+    for motif in ["seigaiha", "kikko", "shippo"] {
+        let paths = background_paths(&format!("[\"{motif}\"]"));
+        let ids: Vec<&str> = paths.iter().map(|(id, _)| id.as_str()).collect();
+        assert!(!ids.iter().any(|id| id.contains(".tile-")), "{motif}: {ids:?}");
+        let (_, ground) = paths
+            .iter()
+            .find(|(id, _)| id.ends_with(".background.ground"))
+            .unwrap_or_else(|| panic!("{motif}: no ground in {ids:?}"));
+        // No tile frame or seam: nothing drawn twice. Runs of a
+        // millimetre within 0.01 mm, as the wagara grounds are held to
+        // (shippō's circles touch where four meet, for half a millimetre).
+        let subpaths: Vec<kurbo::BezPath> = crate::geom::subpath::subpaths(ground)
+            .map(|s| s.to_path())
+            .collect();
+        assert!(subpaths.len() > 50, "{motif}: {} strokes", subpaths.len());
+        let doubled = crate::plot::dedupe::doubled_length(subpaths.iter(), 0.01, 1.0);
+        assert!(doubled == 0.0, "{motif}: {doubled} mm drawn twice");
+        // Seigaiha and shippō are arcs only: no straight frame.
+        if motif != "kikko" {
+            for seg in ground.segments() {
+                if let kurbo::PathSeg::Line(l) = seg {
+                    assert!(l.p0.distance(l.p1) < 0.05, "{motif}: a straight line {l:?}");
+                }
+            }
+        }
+    }
+    // Two motifs alternate as tiles, as before.
+    let paths = background_paths("[\"seigaiha\", \"kikko\"]");
+    assert!(paths.iter().any(|(id, _)| id.contains(".tile-")));
+}

@@ -57,85 +57,9 @@ pub struct WagaraSpec {
     pub region: RegionSpec,
 }
 
-/// The grounds, each a repeat that tiles the plane.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-#[non_exhaustive]
-pub enum Ground {
-    /// 青海波, blue ocean waves: rows of fans of concentric rings, each
-    /// row half hidden by the row in front of it.
-    Seigaiha,
-    /// 麻の葉, hemp leaf: a triangle grid with a six-pointed star at every
-    /// corner (each triangle's corners joined to its centre).
-    Asanoha,
-    /// 亀甲, tortoise shell: a honeycomb of hexagons, each with its inner
-    /// outlines.
-    Kikko,
-    /// 七宝, seven treasures: circles overlapping by a quarter on a square
-    /// grid.
-    Shippo,
-    /// 籠目, woven bamboo: three sets of straight lines, hexagons and
-    /// triangles between them.
-    Kagome,
-    /// 鱗, scales: a triangle grid whose upward triangles are dark (hatched
-    /// with the pen).
-    Uroko,
-    /// 矢絣, arrow feathers: columns of chevrons, each column half a
-    /// chevron higher than the next.
-    Yagasuri,
-    /// 立涌, rising steam: wavy upright lines, each the mirror of the next,
-    /// swelling and narrowing in turn.
-    Tatewaku,
-    /// 鮫小紋, shark skin: fans of concentric rings of fine dots, each row
-    /// half hidden by the row in front, as seigaiha's rings are.
-    #[serde(rename = "samekomon")]
-    SameKomon,
-}
+pub use crate::motif::ground::Ground;
 
-impl Ground {
-    /// Every ground, in the order of the enum.
-    pub const ALL: [Ground; 9] = [
-        Ground::Seigaiha,
-        Ground::Asanoha,
-        Ground::Kikko,
-        Ground::Shippo,
-        Ground::Kagome,
-        Ground::Uroko,
-        Ground::Yagasuri,
-        Ground::Tatewaku,
-        Ground::SameKomon,
-    ];
 
-    /// Its name in a description (`"seigaiha"`), and in the ids it draws.
-    pub fn name(self) -> &'static str {
-        match self {
-            Ground::Seigaiha => "seigaiha",
-            Ground::Asanoha => "asanoha",
-            Ground::Kikko => "kikko",
-            Ground::Shippo => "shippo",
-            Ground::Kagome => "kagome",
-            Ground::Uroko => "uroko",
-            Ground::Yagasuri => "yagasuri",
-            Ground::Tatewaku => "tatewaku",
-            Ground::SameKomon => "samekomon",
-        }
-    }
-
-    /// The `lines` it takes: `(least, most, default)`, or `None`.
-    pub fn lines(self) -> Option<(u32, u32, u32)> {
-        match self {
-            Ground::Seigaiha => Some((1, 8, 4)),
-            Ground::Kikko => Some((1, 3, 2)),
-            Ground::SameKomon => Some((1, 8, 3)),
-            Ground::Asanoha
-            | Ground::Shippo
-            | Ground::Kagome
-            | Ground::Uroko
-            | Ground::Yagasuri
-            | Ground::Tatewaku => None,
-        }
-    }
-}
 
 fn default_scale() -> f64 {
     10.0

@@ -1,6 +1,7 @@
 //! The `wagara` family: a traditional ground (和柄) over a region, drawn
 //! as one seamless repeat — no tile frame, no seam, every line drawn once
-//! and as long as the pattern lets it run (see `ground`).
+//! and as long as the pattern lets it run (see `motif::ground`, which
+//! kimono backgrounds share).
 //!
 //! The repeat is laid out in its own frame (origin at the region's centre
 //! plus `offset`, turned by `angle`) over the region's box, then mapped
@@ -11,18 +12,15 @@
 //! `<layer>.<ground>.<pattern>.outline` for the region's edge.
 
 pub(crate) mod description;
-mod ground;
 
 #[cfg(test)]
 mod tests;
 
-use kurbo::{Affine, Vec2};
+use kurbo::Vec2;
 
 use crate::error::Result;
-use crate::geom::clip::StrokeClipper;
-use crate::geom::region::{FillRule, Region};
-use crate::geom::TOLERANCE;
 use crate::motif::adjust::about;
+use crate::motif::ground;
 use crate::motif::region::region;
 use crate::motif::Context;
 use crate::scene::{Color, Group, Style};
@@ -37,36 +35,18 @@ use crate::spec::WagaraSpec;
 pub(super) fn build(spec: &WagaraSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let region = region(&spec.region, cx)?;
     let bounds = region.bounds();
-    let place = Affine::translate(bounds.center().to_vec2() + Vec2::new(spec.offset[0], spec.offset[1]))
-        * Affine::rotate(spec.angle.to_radians());
-    // The region's box seen from the repeat's frame, a repeat to spare.
-    let window = place
-        .inverse()
-        .transform_rect_bbox(bounds)
-        .inflate(spec.scale, spec.scale);
+    let origin = bounds.center() + Vec2::new(spec.offset[0], spec.offset[1]);
+    let laid = ground::Laid::new(bounds, spec.scale, origin, spec.angle);
     let name = spec.pattern.name();
     let lines = spec.line_count();
     let what = || format!("wagara {group_id} ({name} at scale {} mm)", spec.scale);
     // A ground too fine for its region fails here, before the work.
-    let estimate = ground::estimate(spec.pattern, spec.scale, lines, window);
+    let estimate = ground::estimate(spec.pattern, spec.scale, lines, laid.window());
     cx.budget()
         .clone()
         .take(estimate.min(usize::MAX as f64) as usize, what)?;
-    let drawn = ground::draw(spec.pattern, spec.scale, lines, cx.pen_width(), window);
-    let clipper = StrokeClipper::new(&region, TOLERANCE);
-    let strokes: Vec<_> = drawn
-        .strokes
-        .into_iter()
-        .flat_map(|stroke| clipper.clip(&(place * stroke)).inside)
-        .collect();
-    // Dark shapes are cut to the region as areas, so they stay closed.
-    let mut dark = Vec::new();
-    for shape in drawn.dark {
-        let cut = Region::new(place * shape, FillRule::NonZero)?.intersection(&region);
-        if !cut.is_empty() {
-            dark.push(cut.into_path());
-        }
-    }
+    let ground::Drawn { strokes, dark } =
+        laid.draw(&region, spec.pattern, spec.scale, lines, cx.pen_width())?;
     cx.take_paths(strokes.len() + dark.len(), what)?;
     let id = format!("{group_id}.{name}");
     let mut part = Group::new(&id);

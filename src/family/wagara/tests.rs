@@ -7,7 +7,7 @@ use kurbo::{
     Vec2,
 };
 
-use super::ground::{draw, estimate};
+use crate::motif::ground::{draw, estimate};
 use crate::motif::test_scene;
 use crate::plot::dedupe::doubled_length;
 use crate::spec::Ground;

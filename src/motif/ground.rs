@@ -35,11 +35,96 @@
 
 use std::f64::consts::{PI, TAU};
 
-use kurbo::{Arc, BezPath, Circle, Line, Point, Rect, Shape, Vec2};
+use kurbo::{Affine, Arc, BezPath, Circle, Line, Point, Rect, Shape, Vec2};
 
+use serde::{Deserialize, Serialize};
+
+use crate::error::Result;
+use crate::geom::clip::StrokeClipper;
 use crate::geom::natural_spline;
+use crate::geom::region::{FillRule, Region};
+use crate::geom::TOLERANCE;
 use crate::motif::dot::dot;
-use crate::spec::Ground;
+
+/// The grounds, each a repeat that tiles the plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+#[non_exhaustive]
+pub enum Ground {
+    /// 青海波, blue ocean waves: rows of fans of concentric rings, each
+    /// row half hidden by the row in front of it.
+    Seigaiha,
+    /// 麻の葉, hemp leaf: a triangle grid with a six-pointed star at every
+    /// corner (each triangle's corners joined to its centre).
+    Asanoha,
+    /// 亀甲, tortoise shell: a honeycomb of hexagons, each with its inner
+    /// outlines.
+    Kikko,
+    /// 七宝, seven treasures: circles overlapping by a quarter on a square
+    /// grid.
+    Shippo,
+    /// 籠目, woven bamboo: three sets of straight lines, hexagons and
+    /// triangles between them.
+    Kagome,
+    /// 鱗, scales: a triangle grid whose upward triangles are dark (hatched
+    /// with the pen).
+    Uroko,
+    /// 矢絣, arrow feathers: columns of chevrons, each column half a
+    /// chevron higher than the next.
+    Yagasuri,
+    /// 立涌, rising steam: wavy upright lines, each the mirror of the next,
+    /// swelling and narrowing in turn.
+    Tatewaku,
+    /// 鮫小紋, shark skin: fans of concentric rings of fine dots, each row
+    /// half hidden by the row in front, as seigaiha's rings are.
+    #[serde(rename = "samekomon")]
+    SameKomon,
+}
+
+impl Ground {
+    /// Every ground, in the order of the enum.
+    pub const ALL: [Ground; 9] = [
+        Ground::Seigaiha,
+        Ground::Asanoha,
+        Ground::Kikko,
+        Ground::Shippo,
+        Ground::Kagome,
+        Ground::Uroko,
+        Ground::Yagasuri,
+        Ground::Tatewaku,
+        Ground::SameKomon,
+    ];
+
+    /// Its name in a description (`"seigaiha"`), and in the ids it draws.
+    pub fn name(self) -> &'static str {
+        match self {
+            Ground::Seigaiha => "seigaiha",
+            Ground::Asanoha => "asanoha",
+            Ground::Kikko => "kikko",
+            Ground::Shippo => "shippo",
+            Ground::Kagome => "kagome",
+            Ground::Uroko => "uroko",
+            Ground::Yagasuri => "yagasuri",
+            Ground::Tatewaku => "tatewaku",
+            Ground::SameKomon => "samekomon",
+        }
+    }
+
+    /// The `lines` it takes: `(least, most, default)`, or `None`.
+    pub fn lines(self) -> Option<(u32, u32, u32)> {
+        match self {
+            Ground::Seigaiha => Some((1, 8, 4)),
+            Ground::Kikko => Some((1, 3, 2)),
+            Ground::SameKomon => Some((1, 8, 3)),
+            Ground::Asanoha
+            | Ground::Shippo
+            | Ground::Kagome
+            | Ground::Uroko
+            | Ground::Yagasuri
+            | Ground::Tatewaku => None,
+        }
+    }
+}
 
 /// Curves are made within this distance of the true circle, mm.
 const ACCURACY: f64 = 1e-3;
@@ -50,16 +135,72 @@ const KIKKO_STEP: f64 = 0.2;
 
 /// What a ground draws over a window, in the repeat's frame.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Drawn {
+pub(crate) struct Drawn {
     /// Lines, arcs and dots.
     pub strokes: Vec<BezPath>,
     /// Closed shapes inked all over (hatched by the pen).
     pub dark: Vec<BezPath>,
 }
 
+/// A repeat laid over a region: its frame placed on the page, and the
+/// window of the frame that covers the region's box, a repeat to spare.
+pub(crate) struct Laid {
+    place: Affine,
+    window: Rect,
+}
+
+impl Laid {
+    /// A repeat of `scale` mm over `bounds`, its frame's origin at
+    /// `origin` on the page and turned clockwise by `angle_deg`.
+    pub(crate) fn new(bounds: Rect, scale: f64, origin: Point, angle_deg: f64) -> Laid {
+        let place = Affine::translate(origin.to_vec2()) * Affine::rotate(angle_deg.to_radians());
+        let window = place
+            .inverse()
+            .transform_rect_bbox(bounds)
+            .inflate(scale, scale);
+        Laid { place, window }
+    }
+
+    /// The part of the frame it covers.
+    pub(crate) fn window(&self) -> Rect {
+        self.window
+    }
+
+    /// `ground` in `region` on the page: the strokes clipped to it, the
+    /// dark shapes cut to it as areas (so they stay closed); dots for a
+    /// pen `pen_width` mm wide.
+    ///
+    /// # Errors
+    /// From the region machinery on a degenerate dark shape.
+    pub(crate) fn draw(
+        &self,
+        region: &Region,
+        ground: Ground,
+        scale: f64,
+        lines: u32,
+        pen_width: f64,
+    ) -> Result<Drawn> {
+        let drawn = draw(ground, scale, lines, pen_width, self.window);
+        let clipper = StrokeClipper::new(region, TOLERANCE);
+        let strokes = drawn
+            .strokes
+            .into_iter()
+            .flat_map(|stroke| clipper.clip(&(self.place * stroke)).inside)
+            .collect();
+        let mut dark = Vec::new();
+        for shape in drawn.dark {
+            let cut = Region::new(self.place * shape, FillRule::NonZero)?.intersection(region);
+            if !cut.is_empty() {
+                dark.push(cut.into_path());
+            }
+        }
+        Ok(Drawn { strokes, dark })
+    }
+}
+
 /// `ground` over `window`, in the repeat's frame (the repeat's origin is
 /// the frame's); dots are drawn for a pen `pen_width` mm wide.
-pub(super) fn draw(ground: Ground, scale: f64, lines: u32, pen_width: f64, window: Rect) -> Drawn {
+pub(crate) fn draw(ground: Ground, scale: f64, lines: u32, pen_width: f64, window: Rect) -> Drawn {
     let strokes = match ground {
         Ground::Kagome => kagome(scale, window),
         Ground::Asanoha => asanoha(scale, window),
@@ -84,7 +225,7 @@ pub(super) fn draw(ground: Ground, scale: f64, lines: u32, pen_width: f64, windo
 
 /// About how many strokes [`strokes`] makes over `window`, never fewer
 /// (for the path budget, taken before the work).
-pub(super) fn estimate(ground: Ground, scale: f64, lines: u32, window: Rect) -> f64 {
+pub(crate) fn estimate(ground: Ground, scale: f64, lines: u32, window: Rect) -> f64 {
     // Motifs per square `scale` (the pattern's density), and lines
     // across the window.
     let per_square = match ground {
@@ -205,7 +346,11 @@ fn kikko(scale: f64, lines: u32, window: Rect) -> Vec<BezPath> {
     };
     for j in rows {
         let y = j as f64 * pitch;
-        let shift = if j.rem_euclid(2) == 1 { 0.5 * width } else { 0.0 };
+        let shift = if j.rem_euclid(2) == 1 {
+            0.5 * width
+        } else {
+            0.0
+        };
         // The zigzag above row j: the row's top corners and the corners
         // between them, shared with the row above.
         let mut zigzag = BezPath::new();
@@ -280,9 +425,7 @@ fn same_komon(scale: f64, lines: u32, pen_width: f64, window: Rect) -> Vec<BezPa
     // Rings in the middle of `lines` bands; dots a band apart, their ink
     // a little under half a band across (a pen's tap at the least).
     let band = scale / f64::from(lines);
-    let radii: Vec<f64> = (0..lines)
-        .map(|k| band * (f64::from(k) + 0.5))
-        .collect();
+    let radii: Vec<f64> = (0..lines).map(|k| band * (f64::from(k) + 0.5)).collect();
     let ink = (0.22 * band).max(0.5 * pen_width);
     let mut dots = Vec::new();
     for arc in fan_arcs(scale, &radii, window) {
@@ -290,7 +433,11 @@ fn same_komon(scale: f64, lines: u32, pen_width: f64, window: Rect) -> Vec<BezPa
         let n = (length / band).round().max(1.0);
         for i in 0..n as usize {
             let angle = arc.start_angle + arc.sweep_angle * (i as f64 + 0.5) / n;
-            dots.push(dot(arc.center + Vec2::from_angle(angle) * arc.radii.x, ink, pen_width));
+            dots.push(dot(
+                arc.center + Vec2::from_angle(angle) * arc.radii.x,
+                ink,
+                pen_width,
+            ));
         }
     }
     dots
@@ -339,7 +486,11 @@ fn uroko(scale: f64, window: Rect) -> Vec<BezPath> {
     let rows = (window.y0 / height).floor() as i64 - 1..=(window.y1 / height).ceil() as i64 + 2;
     for j in rows {
         let y = j as f64 * height;
-        let shift = if j.rem_euclid(2) == 1 { 0.5 * scale } else { 0.0 };
+        let shift = if j.rem_euclid(2) == 1 {
+            0.5 * scale
+        } else {
+            0.0
+        };
         let columns = ((window.x0 - shift) / scale).floor() as i64 - 1
             ..=((window.x1 - shift) / scale).ceil() as i64 + 1;
         for i in columns {
@@ -359,11 +510,14 @@ fn yagasuri(scale: f64, window: Rect) -> Vec<BezPath> {
     let pitch = 1.5 * scale;
     let depth = 0.5 * scale;
     let mut strokes = parallels(Vec2::new(1.0, 0.0), scale, 0.0, window);
-    let columns =
-        (window.x0 / scale).floor() as i64 - 1..=(window.x1 / scale).ceil() as i64;
+    let columns = (window.x0 / scale).floor() as i64 - 1..=(window.x1 / scale).ceil() as i64;
     for k in columns {
         let x = k as f64 * scale;
-        let lift = if k.rem_euclid(2) == 1 { 0.5 * pitch } else { 0.0 };
+        let lift = if k.rem_euclid(2) == 1 {
+            0.5 * pitch
+        } else {
+            0.0
+        };
         let rows = ((window.y0 - lift) / pitch).floor() as i64 - 1
             ..=((window.y1 - lift) / pitch).ceil() as i64 + 1;
         for m in rows {
@@ -386,8 +540,7 @@ fn tatewaku(scale: f64, window: Rect) -> Vec<BezPath> {
     let step = wave / 16.0;
     let first = ((window.y0 - wave) / wave).floor() * wave;
     let count = ((window.y1 + wave - first) / step).ceil() as usize + 1;
-    let columns =
-        (window.x0 / scale).floor() as i64 - 1..=(window.x1 / scale).ceil() as i64 + 1;
+    let columns = (window.x0 / scale).floor() as i64 - 1..=(window.x1 / scale).ceil() as i64 + 1;
     columns
         .map(|k| {
             let side = if k.rem_euclid(2) == 1 { -sway } else { sway };
@@ -420,7 +573,10 @@ fn in_sight(centre: Point, radius: f64, front: &[Point], cover: f64) -> Vec<(f64
         let half = ((radius * radius + dist * dist - cover * cover) / (2.0 * radius * dist))
             .clamp(-1.0, 1.0)
             .acos();
-        let (a, b) = ((towards - half).rem_euclid(TAU), (towards + half).rem_euclid(TAU));
+        let (a, b) = (
+            (towards - half).rem_euclid(TAU),
+            (towards + half).rem_euclid(TAU),
+        );
         if a <= b {
             hidden.push((a, b));
         } else {
