@@ -28,7 +28,8 @@ fn with_default_design() -> TempDir {
     dir
 }
 
-fn stats_json(dir: &TempDir, file: &str) -> serde_json::Value {
+/// What `moyo stats --json` says of `file` in `dir`.
+pub(crate) fn stats_json(dir: &TempDir, file: &str) -> serde_json::Value {
     let out = moyo(dir)
         .args(["stats", file, "--json"])
         .assert()

@@ -5,7 +5,9 @@
 //! (`adjust`), the overall flow (`flow`), `[region]` tables as regions
 //! (`region`), shading in line (`bokashi`), strokes to follow
 //! (`stroke`), putting a motif on the page (`place`), limbs drawn
-//! for the pen (`limb`) and dots that are dots, not rings (`dot`).
+//! for the pen (`limb`), dots that are dots, not rings (`dot`), and the
+//! traditional grounds as seamless repeats (`ground`: the wagara family's
+//! and kimono backgrounds').
 //!
 //! The families themselves live in `crate::family`; what a library user
 //! reaches here is the motif [`Library`], [`draw`] for one motif on its
