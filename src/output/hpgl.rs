@@ -21,6 +21,7 @@
 //! PU400,2800;               travel to a stroke's start
 //! PD1200,2800,1200,2000,…;  draw, at most 32 points per PD
 //! …
+//! PU;                       the pen up before another is chosen
 //! SP2;
 //! …
 //! PU;
@@ -311,7 +312,13 @@ pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> Result<String> {
         from_bottom: options.flip_y != options.mirror_y,
         negate_y: false,
     };
-    for block in pen_blocks(scene, options.tolerance) {
+    for (k, block) in pen_blocks(scene, options.tolerance).into_iter().enumerate() {
+        // The pen comes up before it is put away: a pen selected while
+        // the last one is down dots the end of its line (HP plotters;
+        // vpype and Inkscape write the same `PU;`).
+        if k > 0 {
+            out.push_str("PU;\n");
+        }
         out.push_str("SP");
         out.push_str(&block.number.to_string());
         out.push_str(";\n");
@@ -567,6 +574,13 @@ mod tests {
         let sp2 = h.find("SP2;").unwrap();
         assert!(sp1 < sp2);
         assert_eq!(h.matches("SP").count(), 3);
+        // No pen is chosen or put away while one is down.
+        let lines: Vec<&str> = h.lines().collect();
+        for (i, line) in lines.iter().enumerate().skip(1) {
+            if line.starts_with("SP") && !line.starts_with("SP1") {
+                assert_eq!(lines[i - 1], "PU;", "{h}");
+            }
+        }
         // Pen 1: the back layer's curve, then the square; pen 2: the circle.
         assert_eq!(strokes(&h).len(), 3);
         let v = to_hpgl(
