@@ -96,7 +96,9 @@ pub fn run(scene: &mut Scene, options: &BlotOptions) {
 /// A subpath and which of its pieces are still drawn: `lo..hi`, indices
 /// taken modulo the piece count once a closed subpath is opened.
 struct Sub {
+    /// Its path, and its place among the path's subpaths.
     path: usize,
+    nth: usize,
     pieces: Pieces,
     lo: usize,
     hi: usize,
@@ -131,7 +133,7 @@ pub fn thin(paths: Vec<StyledPath>, limit: f64) -> Vec<StyledPath> {
         if p.style.fill.is_some() {
             continue;
         }
-        for s in subpaths(&p.path) {
+        for (nth, s) in subpaths(&p.path).enumerate() {
             let pieces = Pieces::new(s.segments().collect(), s.is_closed(), PIECE, FLAT);
             let n = pieces.pieces.len();
             if n == 0 {
@@ -139,6 +141,7 @@ pub fn thin(paths: Vec<StyledPath>, limit: f64) -> Vec<StyledPath> {
             }
             subs.push(Sub {
                 path: k,
+                nth,
                 whole_ring: pieces.closed,
                 pieces,
                 lo: 0,
@@ -299,36 +302,23 @@ fn approach(s: &Sub, at_start: bool, c: (i64, i64)) -> Option<usize> {
 
 /// `paths` with every touched subpath replaced by what is left of it.
 fn rebuild(paths: Vec<StyledPath>, subs: &[Sub]) -> Vec<StyledPath> {
-    let mut by_path: FxHashMap<usize, Vec<&Sub>> = FxHashMap::default();
-    for s in subs {
-        by_path.entry(s.path).or_default().push(s);
+    let mut touched: FxHashMap<usize, FxHashMap<usize, &Sub>> = FxHashMap::default();
+    for s in subs.iter().filter(|s| s.touched) {
+        touched.entry(s.path).or_default().insert(s.nth, s);
     }
     paths
         .into_iter()
         .enumerate()
         .filter_map(|(k, mut p)| {
-            let Some(list) = by_path.get(&k) else {
+            let Some(cut) = touched.get(&k) else {
                 return Some(p);
             };
-            if !list.iter().any(|s| s.touched) {
-                return Some(p);
-            }
-            // Subpaths were listed in order, all of them (none is empty
-            // of pieces but those that draw nothing).
             let mut out = BezPath::new();
-            let mut list = list.iter();
-            for sub in subpaths(&p.path) {
-                let n = Pieces::new(sub.segments().collect(), sub.is_closed(), PIECE, FLAT)
-                    .pieces
-                    .len();
-                if n == 0 {
-                    continue;
-                }
-                let s = list.next().expect("one Sub per drawing subpath");
-                if !s.touched {
-                    out.extend(sub.elements());
-                } else if s.left() > 0 {
-                    s.pieces.cut(&runs(s), &mut out);
+            for (nth, sub) in subpaths(&p.path).enumerate() {
+                match cut.get(&nth) {
+                    None => out.extend(sub.elements()),
+                    Some(s) if s.left() > 0 => s.pieces.cut(&runs(s), &mut out),
+                    Some(_) => {}
                 }
             }
             if out.elements().is_empty() {

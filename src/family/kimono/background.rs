@@ -148,6 +148,10 @@ pub(crate) fn background(
         group.push_path(format!("{group_id}.mask"), path, base);
     }
 
+    if let Some(laid) = seamless(bg) {
+        ground_in(laid, &mask, group_id, &mut group, cx)?;
+        return Ok(group);
+    }
     let clipper = StrokeClipper::new(&mask, TOLERANCE);
     let motifs: Vec<Drawing> = bg
         .motifs
@@ -167,37 +171,6 @@ pub(crate) fn background(
         n: 0,
     };
     let bounds = mask.bounds();
-    if let Some((ground, scale, lines, angle)) = seamless(bg) {
-        // One repeat over the whole mask instead of tiles: no frame, no
-        // seam, every line once. The frame's origin is the page's, so
-        // neighbouring backgrounds of the same ground line up.
-        let laid = Laid::new(bounds, scale, Point::ZERO, angle);
-        let estimate = ground::estimate(ground, scale, lines, laid.window());
-        let what = || format!("background {group_id}: {} at {scale} mm", ground.name());
-        // A ground too fine for its mask fails here, before the work.
-        tiles
-            .cx
-            .budget()
-            .clone()
-            .take(estimate.min(usize::MAX as f64) as usize, what)?;
-        let drawn = laid.draw(&mask, ground, scale, lines, tiles.cx.pen_width())?;
-        // One path, as a tile is: its closed strokes (shippō's circles,
-        // kikkō's hexagons) are lines of one pattern, not shapes hiding
-        // one another when hidden lines are removed.
-        let drawn_strokes = drawn.strokes.len();
-        let mut path = BezPath::new();
-        for stroke in drawn.strokes {
-            path.extend(stroke.elements().iter().copied());
-        }
-        if !path.elements().is_empty() {
-            // Each stroke is a pen's stroke, as a tile was a path.
-            tiles.cx.take_paths(drawn_strokes, what)?;
-            tiles
-                .group
-                .push_path(format!("{group_id}.ground"), path, Style::default());
-        }
-        return Ok(group);
-    }
     match bg.pattern {
         2 | 3 => {
             let mirror = bg.pattern == 3;
@@ -303,6 +276,40 @@ fn seamless(bg: &BackgroundSpec) -> Option<(Ground, f64, u32, f64)> {
         MotifKind::Shippo => Some((Ground::Shippo, w / 2.0, 1, 45.0)),
         _ => None,
     }
+}
+
+/// A ground `(ground, scale, lines, angle)` over all of `mask`, appended
+/// to `group` as one path: no frame, no seam, every line once. The frame's
+/// origin is the page's, so neighbouring backgrounds of one ground line
+/// up. One path, as a tile is: its closed strokes (shippō's circles,
+/// kikkō's hexagons) are lines of one pattern, not shapes hiding one
+/// another when hidden lines are removed.
+fn ground_in(
+    (ground, scale, lines, angle): (Ground, f64, u32, f64),
+    mask: &Region,
+    group_id: &str,
+    group: &mut Group,
+    cx: &mut Context<'_>,
+) -> Result<()> {
+    let laid = Laid::new(mask.bounds(), scale, Point::ZERO, angle);
+    let estimate = ground::estimate(ground, scale, lines, laid.window());
+    let what = || format!("background {group_id}: {} at {scale} mm", ground.name());
+    // A ground too fine for its mask fails here, before the work.
+    cx.budget()
+        .clone()
+        .take(estimate.min(usize::MAX as f64) as usize, what)?;
+    let drawn = laid.draw(mask, ground, scale, lines, cx.pen_width())?;
+    if drawn.strokes.is_empty() {
+        return Ok(());
+    }
+    // Each stroke is a pen's stroke, as a tile was a path.
+    cx.take_paths(drawn.strokes.len(), what)?;
+    let mut path = BezPath::new();
+    for stroke in drawn.strokes {
+        path.extend(stroke.elements().iter().copied());
+    }
+    group.push_path(format!("{group_id}.ground"), path, Style::default());
+    Ok(())
 }
 
 /// Motif units → mm: `width × height` (height from the motif's aspect when
