@@ -154,6 +154,25 @@ pub enum Error {
         /// What is wrong inside it.
         source: Box<Error>,
     },
+    /// A G-code program would move the machine outside its travel
+    /// ([`GcodeOptions::area`](crate::output::gcode::GcodeOptions::area)).
+    #[error(
+        "gcode: {what} reaches ({x_mm:.3}, {y_mm:.3}) mm in machine coordinates, outside \
+         the machine's travel X {}…{}, Y {}…{} mm (gcode.area); shrink or move the \
+         drawing, or change the origin",
+        area[0], area[2], area[1], area[3]
+    )]
+    MachineArea {
+        /// The scene path the point belongs to, or the move (`park`,
+        /// `refill`).
+        what: String,
+        /// The point in machine millimetres.
+        x_mm: f64,
+        /// See `x_mm`.
+        y_mm: f64,
+        /// The machine's travel, `[x_min, y_min, x_max, y_max]`.
+        area: [f64; 4],
+    },
     /// A point of a plotter program lies outside the coordinates the device
     /// accepts (HPGL: [`HpglOptions::device_range`](crate::output::hpgl::HpglOptions::device_range)).
     #[error(

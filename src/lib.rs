@@ -104,8 +104,8 @@ pub use project::{
 pub use rng::{RandomStream, Seed};
 pub use scene::traditional;
 pub use scene::{
-    embedded_description, Color, Group, Layer, Model, ModelPart, Node, PathBudget, Pen, Scene,
-    Stats, Style, StyledPath,
+    embedded_description, Color, Group, Layer, LayerCodes, Model, ModelPart, Node, PathBudget, Pen,
+    Scene, Stats, Style, StyledPath,
 };
 pub use spec::{Format, SceneSpec, ValidSpec};
 pub use units::{Margins, Orientation, Page, PaperName};

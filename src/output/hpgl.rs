@@ -92,6 +92,7 @@
 use kurbo::{Point, Vec2};
 use serde::{Deserialize, Serialize};
 
+use super::runs::{self, RunOptions};
 use super::strokes::{pen_blocks, positive, Stroke, ToMachine, MIN_TOLERANCE};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
@@ -184,6 +185,17 @@ pub struct HpglOptions {
     /// units, for X and Y alike (see "Device range" in the module
     /// documentation). Default [`HPGL_RANGE`].
     pub device_range: [i32; 2],
+    /// The `VS` of AxiDraw's `+S100`, cm/s: a pen named `+S40 …` is
+    /// selected with `VS` at 40 % of it. Default 38.1 cm/s (the HP 7475A's
+    /// fastest).
+    pub velocity_max_cm_s: f64,
+    /// Where the pen goes after the last stroke, in device millimetres
+    /// (after mirroring and the Y flip, like every written point), before
+    /// it is put away; `None` stays. Default `[0, 0]`, the device's origin.
+    pub park: Option<[f64; 2]>,
+    /// Refills and resuming ([`RunOptions`]); the refill place is in
+    /// device millimetres. Default neither.
+    pub runs: RunOptions,
 }
 
 impl HpglOptions {
@@ -198,6 +210,9 @@ impl HpglOptions {
         velocity_cm_s: None,
         cutter: None,
         device_range: HPGL_RANGE,
+        velocity_max_cm_s: 38.1,
+        park: Some([0.0, 0.0]),
+        runs: RunOptions::NONE,
     };
 
     /// [`HpglOptions::DEFAULT`] with [`CutterOptions::DEFAULT`].
@@ -246,6 +261,24 @@ impl HpglOptions {
         self
     }
 
+    /// These options with `cm_s` as the velocity of `+S100`.
+    pub const fn with_velocity_max_cm_s(mut self, cm_s: f64) -> HpglOptions {
+        self.velocity_max_cm_s = cm_s;
+        self
+    }
+
+    /// These options parking at device `(x, y)` mm (`None`: not at all).
+    pub const fn with_park(mut self, park: Option<[f64; 2]>) -> HpglOptions {
+        self.park = park;
+        self
+    }
+
+    /// These options with refills and resuming.
+    pub const fn with_runs(mut self, runs: RunOptions) -> HpglOptions {
+        self.runs = runs;
+        self
+    }
+
     /// Checks the options; field names in errors are prefixed `hpgl.`.
     pub fn validate(&self) -> Result<()> {
         positive("hpgl.tolerance", self.tolerance)?;
@@ -264,6 +297,13 @@ impl HpglOptions {
         if let Some(v) = self.velocity_cm_s {
             positive("hpgl.velocity_cm_s", v)?;
         }
+        positive("hpgl.velocity_max_cm_s", self.velocity_max_cm_s)?;
+        if let Some([x, y]) = self.park {
+            if !(x.is_finite() && y.is_finite()) {
+                return Err(Error::invalid("hpgl.park", "must be finite"));
+            }
+        }
+        self.runs.validate("hpgl")?;
         if let Some(c) = self.cutter {
             for (field, v) in [
                 ("hpgl.cutter.overcut_mm", c.overcut_mm),
@@ -294,6 +334,29 @@ impl Default for HpglOptions {
     }
 }
 
+/// What the HPGL writer cannot do of what the scene's pens ask (AxiDraw's
+/// `+H` pen height and `+D` delay: HP-GL has no instruction for either),
+/// one line each, for the caller to show.
+pub fn unsupported(scene: &Scene, options: &HpglOptions) -> Vec<String> {
+    let mut out = Vec::new();
+    for block in pen_blocks(scene, options.tolerance) {
+        let codes = block.codes;
+        if let Some(h) = codes.height {
+            out.push(format!(
+                "pen {} asks for pen height +H{h}: HPGL sets no pen height; set it on the device",
+                block.number
+            ));
+        }
+        if let Some(d) = codes.delay_ms {
+            out.push(format!(
+                "pen {} asks for a delay +D{d}: HPGL has no delay; not written",
+                block.number
+            ));
+        }
+    }
+    out
+}
+
 /// Writes `scene` as HPGL (see the module documentation).
 ///
 /// # Errors
@@ -302,9 +365,7 @@ impl Default for HpglOptions {
 pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> Result<String> {
     let mut out = String::from("IN;\nPA;\n");
     if let Some(v) = options.velocity_cm_s {
-        out.push_str("VS");
-        super::number::write_number(&mut out, v, 2);
-        out.push_str(";\n");
+        velocity(&mut out, v);
     }
     let to_machine = ToMachine {
         page: (scene.page.width, scene.page.height),
@@ -312,18 +373,43 @@ pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> Result<String> {
         from_bottom: options.flip_y != options.mirror_y,
         negate_y: false,
     };
-    for (k, block) in pen_blocks(scene, options.tolerance).into_iter().enumerate() {
+    let mut blocks = pen_blocks(scene, options.tolerance);
+    runs::apply(&mut blocks, &options.runs);
+    for (k, block) in blocks.iter().enumerate() {
         // The pen comes up before it is put away: a pen selected while
         // the last one is down dots the end of its line (HP plotters;
         // vpype and Inkscape write the same `PU;`).
-        if k > 0 {
+        if block.codes.pause {
+            pause(&mut out, &format!("pause before pen {}", block.number));
+        } else if k > 0 {
             out.push_str("PU;\n");
         }
         out.push_str("SP");
         out.push_str(&block.number.to_string());
         out.push_str(";\n");
+        if let Some(percent) = block.codes.speed {
+            velocity(
+                &mut out,
+                options.velocity_max_cm_s * f64::from(percent) / 100.0,
+            );
+        } else if k > 0 && blocks[k - 1].codes.speed.is_some() {
+            // Back to the plot's own speed after a pen of its own.
+            match options.velocity_cm_s {
+                Some(v) => velocity(&mut out, v),
+                None => out.push_str("VS;\n"),
+            }
+        }
         for path in &block.paths {
             for stroke in &path.strokes {
+                if stroke.refill_before {
+                    match options.runs.refill_at {
+                        Some([x, y]) => {
+                            let dip = Point::new(x, y);
+                            write_stroke(&mut out, &[dip], options, "refill")?;
+                        }
+                        None => pause(&mut out, &format!("refill pen {}", block.number)),
+                    }
+                }
                 let machine = to_machine.stroke(stroke);
                 let points = match &options.cutter {
                     Some(c) => cut(&machine, c, options.tolerance),
@@ -333,41 +419,71 @@ pub fn to_hpgl(scene: &Scene, options: &HpglOptions) -> Result<String> {
             }
         }
     }
-    out.push_str("PU;\nSP0;\n");
+    // The pen up (and parked), then put away.
+    match options.park {
+        Some([x, y]) => {
+            let (x, y) = units(Point::new(x, y), options, "park")?;
+            out.push_str(&format!("PU{x},{y};\n"));
+        }
+        None => out.push_str("PU;\n"),
+    }
+    out.push_str("SP0;\n");
     Ok(out)
+}
+
+/// `VS` with a velocity in cm/s; `VS;` alone restores the device's.
+fn velocity(out: &mut String, cm_s: f64) {
+    out.push_str("VS");
+    super::number::write_number(out, cm_s, 2);
+    out.push_str(";\n");
+}
+
+/// The pen up, and a comment (HP-GL/2's `CO`) saying why the operator
+/// should stop the plot here: HP-GL has no pause of its own.
+fn pause(out: &mut String, why: &str) {
+    out.push_str("PU;\nCO\"");
+    out.push_str(&why.replace(|c: char| c == '"' || c.is_control(), " "));
+    out.push_str("\";\n");
+}
+
+/// Device point `p` (mm) in plotter units; an error naming `what` when it
+/// is outside the device range.
+fn units(p: Point, o: &HpglOptions, what: &str) -> Result<(i64, i64)> {
+    let [min, max] = o.device_range;
+    let in_range = |v: f64| f64::from(min) <= v && v <= f64::from(max);
+    let (x, y) = (
+        (p.x * o.units_per_mm).round(),
+        (p.y * o.units_per_mm).round(),
+    );
+    if !(in_range(x) && in_range(y)) {
+        return Err(Error::DeviceRange {
+            path: what.to_string(),
+            x_mm: p.x,
+            y_mm: p.y,
+            x_units: x,
+            y_units: y,
+            min_units: min,
+            max_units: max,
+            min_mm: f64::from(min) / o.units_per_mm,
+            max_mm: f64::from(max) / o.units_per_mm,
+        });
+    }
+    // Within the range, so integers that `as` keeps exactly.
+    Ok((x as i64, y as i64))
 }
 
 /// `PU` to the first point, then `PD` through the rest, in rounded units;
 /// an error for a point outside the device range (`path` names the scene
 /// path the stroke comes from).
 fn write_stroke(out: &mut String, points: &[Point], o: &HpglOptions, path: &str) -> Result<()> {
-    let [min, max] = o.device_range;
-    let in_range = |v: f64| f64::from(min) <= v && v <= f64::from(max);
-    let mut units: Vec<(i64, i64)> = Vec::with_capacity(points.len());
-    for p in points {
-        let (x, y) = (
-            (p.x * o.units_per_mm).round(),
-            (p.y * o.units_per_mm).round(),
-        );
-        if !(in_range(x) && in_range(y)) {
-            return Err(Error::DeviceRange {
-                path: path.to_string(),
-                x_mm: p.x,
-                y_mm: p.y,
-                x_units: x,
-                y_units: y,
-                min_units: min,
-                max_units: max,
-                min_mm: f64::from(min) / o.units_per_mm,
-                max_mm: f64::from(max) / o.units_per_mm,
-            });
-        }
-        // Within the range, so integers that `as` keeps exactly.
-        let u = (x as i64, y as i64);
-        if units.last() != Some(&u) {
-            units.push(u);
+    let mut units_of: Vec<(i64, i64)> = Vec::with_capacity(points.len());
+    for &p in points {
+        let u = units(p, o, path)?;
+        if units_of.last() != Some(&u) {
+            units_of.push(u);
         }
     }
+    let units = units_of;
     let Some(&(x0, y0)) = units.first() else {
         return Ok(());
     };
@@ -538,6 +654,8 @@ mod tests {
                 out.last_mut().unwrap().1.extend(pairs(rest));
             }
         }
+        // The park is a move, not a stroke.
+        out.retain(|(_, pd)| !pd.is_empty());
         out
     }
 
@@ -569,7 +687,7 @@ mod tests {
     fn frame_and_pens_in_order() {
         let h = to_hpgl(&two_pen_scene(), &HpglOptions::DEFAULT).unwrap();
         assert!(h.starts_with("IN;\nPA;\nSP1;\nPU"), "{h}");
-        assert!(h.ends_with("PU;\nSP0;\n"));
+        assert!(h.ends_with(";\nPU0,0;\nSP0;\n"), "{h}");
         let sp1 = h.find("SP1;").unwrap();
         let sp2 = h.find("SP2;").unwrap();
         assert!(sp1 < sp2);
@@ -578,7 +696,8 @@ mod tests {
         let lines: Vec<&str> = h.lines().collect();
         for (i, line) in lines.iter().enumerate().skip(1) {
             if line.starts_with("SP") && !line.starts_with("SP1") {
-                assert_eq!(lines[i - 1], "PU;", "{h}");
+                assert!(lines[i - 1].starts_with("PU"), "{h}");
+                assert!(!lines[i - 1].contains(',') || *line == "SP0;", "{h}");
             }
         }
         // Pen 1: the back layer's curve, then the square; pen 2: the circle.
@@ -948,7 +1067,61 @@ mod tests {
         s.layers.clear();
         assert_eq!(
             to_hpgl(&s, &HpglOptions::DEFAULT).unwrap(),
-            "IN;\nPA;\nPU;\nSP0;\n"
+            "IN;\nPA;\nPU0,0;\nSP0;\n"
         );
+    }
+
+    #[test]
+    fn pens_take_their_speed_and_pause_from_their_names() {
+        let mut scene = two_pen_scene();
+        scene.pens[1].name = "!+S50+D200+H10 red".into();
+        let h = to_hpgl(&scene, &HpglOptions::DEFAULT).unwrap();
+        // Pen 2 at half the maximum velocity, after a pause comment, with
+        // the pen up.
+        assert!(
+            h.contains(";\nPU;\nCO\"pause before pen 2\";\nSP2;\nVS19.05;\n"),
+            "{h}"
+        );
+        assert_eq!(h.matches("CO\"").count(), 1);
+        let w = unsupported(&scene, &HpglOptions::DEFAULT);
+        assert_eq!(w.len(), 2, "+H and +D: {w:?}");
+        // A pen of its own speed, then one without: back to the plot's.
+        scene.pens.swap(0, 1);
+        scene.pens[0].number = 1;
+        scene.pens[1].number = 2;
+        let h = to_hpgl(&scene, &HpglOptions::DEFAULT).unwrap();
+        assert!(
+            h.contains("SP1;\nVS19.05;\n") && h.contains("SP2;\nVS;\n"),
+            "{h}"
+        );
+        let h = to_hpgl(&scene, &HpglOptions::DEFAULT.with_velocity_cm_s(Some(8.0))).unwrap();
+        assert!(h.contains("SP2;\nVS8;\n"), "{h}");
+    }
+
+    #[test]
+    fn refills_dip_or_pause_and_resuming_draws_the_rest() {
+        let runs = RunOptions::default().with_refill_mm(Some(30.0));
+        let paused = to_hpgl(&two_pen_scene(), &HpglOptions::DEFAULT.with_runs(runs)).unwrap();
+        assert!(paused.contains("PU;\nCO\"refill pen 1\";\n"), "{paused}");
+        let dipped = to_hpgl(
+            &two_pen_scene(),
+            &HpglOptions::DEFAULT.with_runs(runs.with_refill_at(Some([-5.0, 10.0]))),
+        );
+        // A dot at the ink well, 5 mm left of the sheet.
+        let dipped = dipped.unwrap();
+        assert!(dipped.contains("PU-200,400;\nPD-200,400;\n"), "{dipped}");
+        assert!(!dipped.contains("CO\""));
+
+        let whole = strokes(&to_hpgl(&two_pen_scene(), &HpglOptions::DEFAULT).unwrap());
+        let rest = strokes(
+            &to_hpgl(
+                &two_pen_scene(),
+                &HpglOptions::DEFAULT.with_runs(RunOptions::default().with_from_distance_mm(90.0)),
+            )
+            .unwrap(),
+        );
+        assert_eq!(rest.len(), 2);
+        assert_eq!(rest[1], whole[2]);
+        assert_eq!(rest[0].1.last(), whole[1].1.last());
     }
 }

@@ -8,9 +8,11 @@
 //!   adds preview fills and `%` layers ([`SvgOptions::preview`]);
 //! - [`render_png`]: a PNG rendered from SVG text (the colour preview's,
 //!   for a preview);
-//! - [`gcode`] and [`hpgl`]: programs for pen plotters and cutters, both
+//! - [`gcode`] and [`hpgl`], set for a machine by a [`device`] profile:
+//!   programs for pen plotters and cutters, both
 //!   written from one stroke model (pens in order, flattened strokes,
-//!   closed or open, page to machine coordinates);
+//!   closed or open, page to machine coordinates), cut into runs between
+//!   refills or resumed part way ([`RunOptions`]);
 //! - [`path_dump`]: a stable one-line-per-path text for snapshot tests;
 //! - [`to_obj`]: the 3D models beside a drawing (a vine and its supports)
 //!   as Wavefront OBJ;
@@ -18,17 +20,21 @@
 //! - [`write_atomic`]: puts any of these on disk without half-written files;
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
+pub mod device;
 pub mod gcode;
 pub mod hpgl;
 
 mod animate;
+mod arcs;
 mod atomic;
 mod dump;
 mod number;
 mod obj;
 mod preview;
+mod runs;
 mod strokes;
 mod svg;
+mod template;
 
 pub use animate::{animated_svg, FRAME_SECONDS};
 pub use atomic::write_atomic;
@@ -36,6 +42,7 @@ pub use dump::path_dump;
 pub use number::{grouped, write_number};
 pub use obj::to_obj;
 pub use preview::{check_dpi, render_png};
+pub use runs::RunOptions;
 #[cfg(feature = "studio")]
 pub(crate) use svg::write_path_data;
 pub use svg::{to_svg, SvgOptions};

@@ -21,7 +21,7 @@ use std::collections::BTreeSet;
 use kurbo::{PathEl, Point};
 
 use crate::error::{Error, Result};
-use crate::scene::Scene;
+use crate::scene::{LayerCodes, Scene};
 
 /// The smallest flattening tolerance honoured, in mm; smaller values
 /// (including zero and negative ones) are raised to it so that flattening
@@ -39,6 +39,8 @@ pub(super) struct Stroke {
     pub points: Vec<Point>,
     /// The subpath was closed (`ClosePath`, or it ends on its start).
     pub closed: bool,
+    /// The pen is refilled before this stroke ([`super::runs`]).
+    pub refill_before: bool,
 }
 
 /// The strokes of one scene path.
@@ -57,6 +59,8 @@ pub(super) struct PenBlock<'a> {
     pub number: u32,
     /// The pen's name, empty when the pen is missing from the pen list.
     pub name: &'a str,
+    /// AxiDraw's codes in the pen's name.
+    pub codes: LayerCodes,
     /// The paths the pen draws, in output order.
     pub paths: Vec<PathStrokes<'a>>,
 }
@@ -92,9 +96,11 @@ pub(super) fn pen_blocks(scene: &Scene, tolerance: f64) -> Vec<PenBlock<'_>> {
             });
         }
         if !paths.is_empty() {
+            let name = scene.pen(number).map_or("", |p| p.name.as_str());
             blocks.push(PenBlock {
                 number,
-                name: scene.pen(number).map_or("", |p| p.name.as_str()),
+                name,
+                codes: LayerCodes::of(name),
                 paths,
             });
         }
@@ -177,7 +183,11 @@ impl StrokeBuilder {
                 }
                 points.push(first);
             }
-            self.strokes.push(Stroke { points, closed });
+            self.strokes.push(Stroke {
+                points,
+                closed,
+                refill_before: false,
+            });
         }
         self.drawn = false;
     }
@@ -211,7 +221,7 @@ impl ToMachine {
     pub(super) fn stroke(&self, stroke: &Stroke) -> Stroke {
         Stroke {
             points: stroke.points.iter().map(|&p| self.map(p)).collect(),
-            closed: stroke.closed,
+            ..*stroke
         }
     }
 }

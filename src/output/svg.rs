@@ -35,7 +35,9 @@
 //!
 //! Each pen's Inkscape layer is labelled with the pen number first, then
 //! the pen's name (`1 black`): AxiDraw and vpype read the leading integer as
-//! the layer number. Pens come in ascending number, and only pens that draw
+//! the layer number. AxiDraw's codes in a pen's name go where AxiDraw reads
+//! them, a pause before the number and the others right after it (pen 3
+//! named `!+S40 fine` is labelled `!3+S40 fine`: [`LayerCodes::label`]). Pens come in ascending number, and only pens that draw
 //! at least one plotted layer get an Inkscape layer; within a pen, scene
 //! layers are written back to front.
 //!
@@ -56,7 +58,7 @@ use std::collections::BTreeSet;
 use kurbo::{Affine, BezPath, PathEl, Point};
 
 use super::number::{write_number, MAX_PRECISION};
-use crate::scene::{embed, Color, Group, Layer, Node, Pen, Scene, StyledPath};
+use crate::scene::{embed, Color, Group, Layer, LayerCodes, Node, Pen, Scene, StyledPath};
 
 /// Options of [`to_svg`].
 #[non_exhaustive]
@@ -246,12 +248,9 @@ impl Writer {
         self.out.push_str(&number);
         self.out
             .push_str("\" inkscape:groupmode=\"layer\" inkscape:label=\"");
-        // AxiDraw and vpype read the leading number as the pen/layer number.
-        self.out.push_str(&number);
-        if !pen.name.is_empty() {
-            self.out.push(' ');
-            escape_into(&mut self.out, &pen.name);
-        }
+        // AxiDraw and vpype read the leading number as the pen/layer
+        // number, AxiDraw the codes around it.
+        escape_into(&mut self.out, &LayerCodes::label(pen.number, &pen.name));
         self.out.push('"');
         self.stroke_style(pen);
         self.out.push_str(">\n");

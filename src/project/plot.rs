@@ -7,8 +7,8 @@ use kurbo::{BezPath, Point};
 
 use crate::error::{Error, Result};
 use crate::input::{import_svg, ImportOptions, Imported};
-use crate::output::gcode::{to_gcode, GcodeOptions};
-use crate::output::hpgl::{to_hpgl, HpglOptions};
+use crate::output::gcode::{self, to_gcode, GcodeOptions};
+use crate::output::hpgl::{self, to_hpgl, HpglOptions};
 use crate::output::{render_png, to_svg, SvgOptions};
 use crate::plot::{self, PlotOptions};
 use crate::scene::{Color, Group, Layer, Pen, Scene, Style};
@@ -28,6 +28,9 @@ pub fn read_svg(path: &Path, options: &ImportOptions) -> Result<Imported> {
 }
 
 /// The output of [`plot_scene`], with its options.
+// One per job: the size of the G-code variant costs nothing, a box would
+// cost every caller a `Box::new`.
+#[allow(clippy::large_enum_variant)]
 #[non_exhaustive]
 #[derive(Debug, Clone, PartialEq)]
 pub enum PlotFormat {
@@ -145,6 +148,9 @@ pub struct Plotted {
     pub bytes: String,
     /// The PNG preview, when the job asks for one.
     pub png: Option<Vec<u8>>,
+    /// What the output could not do of what the drawing asks (a pen's
+    /// AxiDraw code the machine has no way to carry out), one line each.
+    pub warnings: Vec<String>,
 }
 
 impl Plotted {
@@ -194,15 +200,15 @@ pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
         plot::occlude::mark_path_groups_solid(&mut scene);
     }
     let scene = plot::run(scene, &job.stages)?;
-    let bytes = match &job.format {
-        PlotFormat::Svg(o) => to_svg(&scene, o),
+    let (bytes, warnings) = match &job.format {
+        PlotFormat::Svg(o) => (to_svg(&scene, o), Vec::new()),
         PlotFormat::Gcode(o) => {
             o.validate()?;
-            to_gcode(&scene, o)
+            (to_gcode(&scene, o)?, gcode::unsupported(&scene, o))
         }
         PlotFormat::Hpgl(o) => {
             o.validate()?;
-            to_hpgl(&scene, o)?
+            (to_hpgl(&scene, o)?, hpgl::unsupported(&scene, o))
         }
     };
     let png = match job.preview {
@@ -216,7 +222,12 @@ pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
         }
         None => None,
     };
-    Ok(Plotted { scene, bytes, png })
+    Ok(Plotted {
+        scene,
+        bytes,
+        png,
+        warnings,
+    })
 }
 
 /// The scene with one more layer: red lines along every pen-up move, in
@@ -311,7 +322,7 @@ mod plot_tests {
             let plotted = plot_scene(drawing(), &job).unwrap();
             let expected = match &format {
                 PlotFormat::Svg(o) => to_svg(&plotted_scene, o),
-                PlotFormat::Gcode(o) => to_gcode(&plotted_scene, o),
+                PlotFormat::Gcode(o) => to_gcode(&plotted_scene, o).unwrap(),
                 PlotFormat::Hpgl(o) => to_hpgl(&plotted_scene, o).unwrap(),
             };
             assert_eq!(plotted.bytes, expected);

@@ -8,12 +8,14 @@
 //! hash order, so they are the same on every run.
 
 mod budget;
+mod codes;
 mod color;
 pub(crate) mod embed;
 mod model;
 pub mod traditional;
 
 pub use budget::PathBudget;
+pub use codes::LayerCodes;
 pub use color::Color;
 pub use embed::embedded_description;
 pub use model::{Model, ModelPart};

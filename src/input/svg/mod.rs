@@ -39,10 +39,13 @@
 //!     label. When the rest of the label starts with `%` (`"3 %odd"`), the
 //!     layer is plotted (AxiDraw reads the number first) and keeps the
 //!     whole label as its name. A label that starts otherwise (`"red"`,
-//!     `"0 red"`, `"!2 pause"`) has no pen number: the whole label is the
-//!     name, and the pen takes a free number. AxiDraw's other codes (`!`
-//!     pause, `+H`, `+S`, `+D` after the number) are kept in the name and
-//!     not acted upon.
+//!     `"0 red"`) has no pen number: the whole label is the name, and the
+//!     pen takes a free number. AxiDraw's other codes stay in the name,
+//!     where the G-code and HPGL writers act on them
+//!     ([`LayerCodes`](crate::scene::LayerCodes)): a `!` before the number
+//!     (`"!2 pause"` is pen 2 named `!pause`) and `+S`, `+H`, `+D` after it
+//!     (`"3+S40 fine"` is pen 3 named `+S40 fine`; moyo also reads them
+//!     after a space, where AxiDraw takes them for text).
 //!   - Sub-layers are not parsed, as in AxiDraw 3 and later: they belong to
 //!     their top-level layer, so a `%` sub-layer inside a plotted layer is
 //!     plotted with it, and everything inside a `%` layer is not plotted.

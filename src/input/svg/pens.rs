@@ -8,6 +8,8 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 
 use super::scan::LayerSource;
 use super::walk::{Drawn, Walked};
+#[cfg(doc)]
+use crate::scene::LayerCodes;
 use crate::scene::{Color, Group, Layer, Pen, Scene, Style};
 use crate::units::Page;
 
@@ -154,14 +156,26 @@ pub(super) fn by_layer(
 /// separators after it (whitespace, `-`, `_`, `:`) are dropped, so
 /// `"3-blue"`, `"3_blue"`, `"3: blue"` and `" 3 blue"` are all pen 3 named
 /// `blue`.
+///
+/// AxiDraw's forced pause, a `!` before the number, stays with the name
+/// (`"!2 pause"` is pen 2 named `!pause`), and so do the codes after the
+/// number (`"3+S40 fine"` is pen 3 named `+S40 fine`): the writers act on
+/// them ([`LayerCodes`]).
 fn split_label(label: &str) -> (Option<u32>, String) {
     let label = label.trim();
-    let digits = label.len() - label.trim_start_matches(|c: char| c.is_ascii_digit()).len();
-    match label[..digits].parse::<u32>() {
+    let (pause, numbered) = match label.strip_prefix('!') {
+        Some(rest) => ("!", rest),
+        None => ("", label),
+    };
+    let digits = numbered.len()
+        - numbered
+            .trim_start_matches(|c: char| c.is_ascii_digit())
+            .len();
+    match numbered[..digits].parse::<u32>() {
         Ok(n) if PEN_NUMBERS.contains(&n) => {
-            let rest = label[digits..]
+            let rest = numbered[digits..]
                 .trim_start_matches(|c: char| c.is_whitespace() || "-_:".contains(c));
-            (Some(n), rest.trim_end().to_string())
+            (Some(n), format!("{pause}{}", rest.trim_end()))
         }
         _ => (None, label.to_string()),
     }
@@ -592,8 +606,8 @@ mod tests {
                 (l.name.as_str(), l.pen, pen.name.as_str(), l.is_plotted())
             })
             .collect();
-        // Numbered: 3, 7, 5, 9. Free numbers in document order: plotted
-        // layers first (1, 2, 4), then the documentation layers (6, 8, 10).
+        // Numbered: 3, 7, 5, 2, 9. Free numbers in document order: plotted
+        // layers first (1, 4), then the documentation layers (6, 8, 10).
         assert_eq!(
             got,
             [
@@ -604,8 +618,8 @@ mod tests {
                 ("Outline", 1, "Outline", true),
                 ("5 %odd", 5, "%odd", true),
                 ("%  spaced", 10, "%  spaced", false),
-                ("0 zero", 2, "0 zero", true),
-                ("!2 pause", 4, "!2 pause", true),
+                ("0 zero", 4, "0 zero", true),
+                ("!pause", 2, "!pause", true),
                 ("9", 9, "", true),
             ]
         );
