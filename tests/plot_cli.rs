@@ -79,6 +79,72 @@ fn stats_json_has_totals_and_layers() {
 }
 
 #[test]
+fn stats_give_the_time_at_constant_speed_and_with_acceleration() {
+    let dir = with_default_design();
+    let s = stats_json(&dir, "hem.svg");
+    let (constant, accel) = (number(&s, "plot_time_s"), number(&s, "plot_time_accel_s"));
+    // Thousands of strokes, each starting and stopping: a good deal more.
+    assert!(accel > 1.1 * constant && constant > 0.0, "{s}");
+    let layers = s["layers"].as_array().expect("layers");
+    for l in layers {
+        assert!(
+            number(l, "plot_time_accel_s") >= number(l, "plot_time_s"),
+            "{l}"
+        );
+    }
+    let sum: f64 = layers.iter().map(|l| number(l, "plot_time_accel_s")).sum();
+    assert!((sum - accel).abs() < 1e-6 * accel, "{sum} vs {accel}");
+
+    // The table has both, the total row last.
+    let out = moyo(&dir).args(["stats", "hem.svg"]).assert().success();
+    let table = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+    let header = table.lines().next().unwrap();
+    assert!(header.contains("   time accel time  doubled mm"), "{table}");
+    let total: Vec<&str> = table.lines().last().unwrap().split_whitespace().collect();
+    let seconds = |d: &str| -> f64 {
+        // 1h02m, 5m07s or 42s.
+        let (h, rest) = d.split_once('h').unwrap_or(("0", d));
+        let (m, rest) = rest.split_once('m').unwrap_or(("0", rest));
+        let s = rest.trim_end_matches('s');
+        let n = |t: &str| {
+            if t.is_empty() {
+                0.0
+            } else {
+                t.parse::<f64>().unwrap()
+            }
+        };
+        3600.0 * n(h) + 60.0 * n(m) + n(s)
+    };
+    assert_eq!(total[0], "total", "{table}");
+    // Rounded to the minute past an hour.
+    assert!((seconds(total[4]) - constant).abs() <= 60.0, "{table}");
+    assert!((seconds(total[5]) - accel).abs() <= 60.0, "{table}");
+
+    // With all but instant acceleration, the two figures meet: the
+    // flags reach the model.
+    let out = moyo(&dir)
+        .args(["stats", "hem.svg", "--json"])
+        .args([
+            "--accel-down",
+            "1e9",
+            "--accel-up",
+            "1e9",
+            "--cornering",
+            "1e3",
+        ])
+        .assert()
+        .success();
+    let quick: serde_json::Value = serde_json::from_slice(&out.get_output().stdout).unwrap();
+    let t = number(&quick, "plot_time_accel_s");
+    assert!(t >= constant && t < 1.001 * constant, "{t} vs {constant}");
+    moyo(&dir)
+        .args(["stats", "hem.svg", "--cornering=-1"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::starts_with("error: --cornering: "));
+}
+
+#[test]
 fn merge_and_sort_keep_ink_and_shorten_travel() {
     let dir = tempfile::tempdir().unwrap();
     // The default design in the order its generators drew it.
@@ -279,6 +345,9 @@ fn bad_stage_options_are_refused() {
         &["--multipass", "0"],
         &["--merge", "-1"],
         &["--speed-down", "0"],
+        &["--accel-up", "0"],
+        &["--accel-down", "inf"],
+        &["--cornering", "NaN"],
         &["--dedupe=-0.1"],
         &["--dedupe", "NaN"],
         &["--dedupe", "400"],
@@ -507,6 +576,7 @@ fn documentation_layers_survive_merge_and_sort_unchanged_in_the_preview() {
             "pen_down_mm",
             "pen_up_mm",
             "plot_time_s",
+            "plot_time_accel_s",
         ] {
             let plotted: f64 = layers
                 .iter()

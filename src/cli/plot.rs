@@ -193,40 +193,59 @@ pub(crate) struct PlotArgs {
 
 #[derive(Args)]
 pub(crate) struct SpeedArgs {
-    /// Drawing speed for the time estimate, mm/s.
+    /// Drawing speed for the time estimates, mm/s (the most it reaches
+    /// with acceleration).
     #[arg(long, default_value_t = Speeds::DEFAULT.pen_down_mm_s, help_heading = "Time estimate")]
     speed_down: f64,
-    /// Travel speed for the time estimate, mm/s.
+    /// Travel speed for the time estimates, mm/s (likewise).
     #[arg(long, default_value_t = Speeds::DEFAULT.pen_up_mm_s, help_heading = "Time estimate")]
     speed_up: f64,
     /// Time of one pen lift and lowering, s.
     #[arg(long, default_value_t = Speeds::DEFAULT.pen_lift_s, help_heading = "Time estimate")]
     lift_time: f64,
+    /// Acceleration while drawing, for the time with acceleration, mm/s².
+    #[arg(long, value_name = "MM_S2", default_value_t = Speeds::DEFAULT.pen_down_accel_mm_s2, help_heading = "Time estimate")]
+    accel_down: f64,
+    /// Acceleration while travelling, for the time with acceleration,
+    /// mm/s².
+    #[arg(long, value_name = "MM_S2", default_value_t = Speeds::DEFAULT.pen_up_accel_mm_s2, help_heading = "Time estimate")]
+    accel_up: f64,
+    /// Cornering distance (junction deviation) for the time with
+    /// acceleration, mm: 0 stops at every corner, more takes corners
+    /// faster.
+    #[arg(long, value_name = "MM", default_value_t = Speeds::DEFAULT.cornering_mm, help_heading = "Time estimate")]
+    cornering: f64,
 }
 
 impl SpeedArgs {
+    /// The flag of each field of [`Speeds`], for errors.
+    const FLAGS: [(&'static str, &'static str); 6] = [
+        ("pen_down_mm_s", "speed-down"),
+        ("pen_up_mm_s", "speed-up"),
+        ("pen_lift_s", "lift-time"),
+        ("pen_down_accel_mm_s2", "accel-down"),
+        ("pen_up_accel_mm_s2", "accel-up"),
+        ("cornering_mm", "cornering"),
+    ];
+
     fn speeds(&self) -> Result<Speeds, CliError> {
-        let positive = |name: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(CliError::Message(format!(
-                    "--{name} must be a positive number, got {v}"
-                )))
+        let s = Speeds::DEFAULT
+            .with_pen_down_mm_s(self.speed_down)
+            .with_pen_up_mm_s(self.speed_up)
+            .with_pen_lift_s(self.lift_time)
+            .with_pen_down_accel_mm_s2(self.accel_down)
+            .with_pen_up_accel_mm_s2(self.accel_up)
+            .with_cornering_mm(self.cornering);
+        s.validate().map_err(|e| match e {
+            moyo::Error::Invalid { field, message, .. } => {
+                let flag = Self::FLAGS
+                    .iter()
+                    .find(|(f, _)| *f == field)
+                    .map_or(field.as_str(), |(_, flag)| flag);
+                CliError::Message(format!("--{flag}: {message}"))
             }
-        };
-        positive("speed-down", self.speed_down)?;
-        positive("speed-up", self.speed_up)?;
-        if !(self.lift_time.is_finite() && self.lift_time >= 0.0) {
-            return Err(CliError::Message(format!(
-                "--lift-time must be zero or more, got {}",
-                self.lift_time
-            )));
-        }
-        let mut s = Speeds::DEFAULT;
-        s.pen_down_mm_s = self.speed_down;
-        s.pen_up_mm_s = self.speed_up;
-        s.pen_lift_s = self.lift_time;
+            e => e.into(),
+        })?;
         Ok(s)
     }
 }
@@ -404,12 +423,13 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     }
     let s = plot::stats(&plotted.scene, &speeds);
     eprintln!(
-        "wrote {} ({} paths, {:.0} mm pen-down, {:.0} mm pen-up, about {})",
+        "wrote {} ({} paths, {:.0} mm pen-down, {:.0} mm pen-up, about {} at constant speed, {} with acceleration)",
         args.output.display(),
         s.paths,
         s.pen_down_mm,
         s.pen_up_mm,
-        duration(s.plot_time_s)
+        duration(s.plot_time_s),
+        duration(s.plot_time_accel_s)
     );
     warn_outside_page(&plotted.scene);
     Ok(())
@@ -432,6 +452,7 @@ struct Figures {
     down: f64,
     up: f64,
     time: f64,
+    time_accel: f64,
     doubled: f64,
     debris: usize,
     densest: f64,
@@ -452,11 +473,12 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     let row = |out: &mut dyn Write, name: &str, f: Figures| {
         writeln!(
             out,
-            "{name:<24} {:>8} {:>14.1} {:>14.1} {:>10} {:>11.1} {:>7} {:>8.1}",
+            "{name:<24} {:>8} {:>14.1} {:>14.1} {:>10} {:>10} {:>11.1} {:>7} {:>8.1}",
             f.paths,
             f.down,
             f.up,
             duration(f.time),
+            duration(f.time_accel),
             f.doubled,
             f.debris,
             f.densest
@@ -464,8 +486,16 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     };
     writeln!(
         out,
-        "{:<24} {:>8} {:>14} {:>14} {:>10} {:>11} {:>7} {:>8}",
-        "layer", "paths", "pen-down mm", "pen-up mm", "time", "doubled mm", "debris", "densest"
+        "{:<24} {:>8} {:>14} {:>14} {:>10} {:>10} {:>11} {:>7} {:>8}",
+        "layer",
+        "paths",
+        "pen-down mm",
+        "pen-up mm",
+        "time",
+        "accel time",
+        "doubled mm",
+        "debris",
+        "densest"
     )
     .map_err(stdout_error)?;
     for l in &s.layers {
@@ -474,6 +504,7 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
             down: l.pen_down_mm,
             up: l.pen_up_mm,
             time: l.plot_time_s,
+            time_accel: l.plot_time_accel_s,
             doubled: l.doubled_mm,
             debris: l.debris,
             densest: l.densest,
@@ -485,6 +516,7 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
         down: s.pen_down_mm,
         up: s.pen_up_mm,
         time: s.plot_time_s,
+        time_accel: s.plot_time_accel_s,
         doubled: s.doubled_mm,
         debris: s.debris,
         densest: s.densest,
