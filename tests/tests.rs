@@ -9,6 +9,7 @@ mod cli;
 mod compat;
 mod design_reference;
 mod determinism;
+mod devices;
 mod fill_cli;
 mod fuzz_regressions;
 mod golden;

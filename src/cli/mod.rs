@@ -41,7 +41,7 @@ enum Command {
     /// Stages run in a fixed order: transform, hatch, occlude, then per pen
     /// dedupe, merge, debris, simplify, sort, multipass. Only the stages
     /// asked for run.
-    Plot(plot::PlotArgs),
+    Plot(Box<plot::PlotArgs>),
     /// Path count, pen-down and pen-up length and plot time of an SVG.
     Stats(plot::StatsArgs),
     /// Fill the closed shapes of any SVG with a Voronoi-family pattern.
@@ -63,6 +63,13 @@ enum Command {
     /// only in the current folder.
     #[cfg(feature = "studio")]
     Studio(studio::StudioArgs),
+    /// List the built-in machine profiles, or print one (TOML, with its
+    /// comments) to start your own from: `moyo devices grbl-z > my.toml`,
+    /// then `moyo plot --device my.toml`.
+    Devices {
+        /// The profile to print.
+        name: Option<String>,
+    },
     /// Print a template's scene description to start a design from.
     New {
         /// Template name (see `moyo templates`).
@@ -126,6 +133,7 @@ pub(crate) fn run() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render(&args),
         Command::Templates => list_templates(),
+        Command::Devices { name } => plot::devices(name.as_deref()),
         Command::Plot(args) => plot::plot(&args),
         Command::Stats(args) => plot::stats(&args),
         Command::Fill(args) => fill::fill(&args),

@@ -7,9 +7,10 @@ use clap::{Args, ValueEnum};
 
 use super::{stdout_error, warn_outside_page, CliError};
 use moyo::input::{ImportOptions, Imported};
+use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
 use moyo::output::gcode::{GcodeOptions, Origin};
 use moyo::output::hpgl::{CutterOptions, HpglOptions};
-use moyo::output::{write_atomic, SvgOptions};
+use moyo::output::{write_atomic, RunOptions, SvgOptions};
 use moyo::plot::{
     self, BlotOptions, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
     OccludeOptions, PlotOptions, SimplifyOptions, SortOptions, Speeds, TransformOptions,
@@ -133,52 +134,60 @@ pub(crate) struct PlotArgs {
     #[arg(long, requires = "png", help_heading = "Output")]
     show_travel: bool,
 
-    /// G-code: command that lifts the pen.
-    #[arg(long, default_value = "M5", help_heading = "G-code")]
-    pen_up: String,
-    /// G-code: command that lowers the pen.
-    #[arg(long, default_value = "M3 S1000", help_heading = "G-code")]
-    pen_down: String,
-    /// G-code: pause after each pen move, seconds.
-    #[arg(long, default_value_t = 0.15, help_heading = "G-code")]
-    pen_delay: f64,
-    /// G-code: drawing feed rate, mm/min.
-    #[arg(long, default_value_t = 1500.0, help_heading = "G-code")]
-    feed: f64,
-    /// G-code: travel feed rate, mm/min (0: rapid moves, G0).
-    #[arg(long, default_value_t = 4000.0, help_heading = "G-code")]
-    travel_feed: f64,
-    /// G-code: where the machine's origin is on the page.
-    #[arg(
-        long,
-        value_enum,
-        default_value = "bottom-left",
-        help_heading = "G-code"
-    )]
-    origin: OriginArg,
+    /// The machine: a built-in profile (`moyo devices` lists them) or a
+    /// profile file (TOML). It sets the format and every G-code or HPGL
+    /// option below; the flags change what it says. Without it, a moyo
+    /// SVG's own `[device]` counts, else the defaults.
+    #[arg(long, value_name = "NAME|FILE", help_heading = "Machine")]
+    device: Option<String>,
+    /// Refill the pen after at most MM of drawing: runs end between
+    /// strokes, a longer stroke is cut into whole runs.
+    #[arg(long, value_name = "MM", help_heading = "Machine")]
+    refill: Option<f64>,
+    /// With --refill: dip the pen at machine X,Y mm (else pause there).
+    #[arg(long, value_name = "X,Y", requires = "refill", value_parser = parse_point, allow_hyphen_values = true, help_heading = "Machine")]
+    refill_at: Option<[f64; 2]>,
+    /// Resume a failed plot: leave out its first MM of drawing.
+    #[arg(long, value_name = "MM", help_heading = "Machine")]
+    from_distance: Option<f64>,
+
+    /// G-code: command that lifts the pen [default: M5].
+    #[arg(long, help_heading = "G-code")]
+    pen_up: Option<String>,
+    /// G-code: command that lowers the pen [default: M3 S1000].
+    #[arg(long, help_heading = "G-code")]
+    pen_down: Option<String>,
+    /// G-code: pause after each pen move, seconds [default: 0.15].
+    #[arg(long, help_heading = "G-code")]
+    pen_delay: Option<f64>,
+    /// G-code: drawing feed rate, mm/min [default: 1500].
+    #[arg(long, help_heading = "G-code")]
+    feed: Option<f64>,
+    /// G-code: travel feed rate, mm/min (0: rapid moves, G0) [default:
+    /// 4000].
+    #[arg(long, help_heading = "G-code")]
+    travel_feed: Option<f64>,
+    /// G-code: where the machine's origin is on the page [default:
+    /// bottom-left].
+    #[arg(long, value_enum, help_heading = "G-code")]
+    origin: Option<OriginArg>,
     /// G-code: negate machine Y.
     #[arg(long, help_heading = "G-code")]
     flip_y: bool,
+    /// G-code: write arcs (G2/G3) where strokes follow a circle within TOL
+    /// mm (default 0.01).
+    #[arg(long, value_name = "TOL", num_args = 0..=1, default_missing_value = "0.01", help_heading = "G-code")]
+    arcs: Option<f64>,
 
     /// HPGL: cutter mode (closed outlines, overcut, drag-knife offset).
     #[arg(long, help_heading = "HPGL")]
     cutter: bool,
-    /// HPGL cutter: cut past the start of closed outlines, mm.
-    #[arg(
-        long,
-        default_value_t = 1.0,
-        requires = "cutter",
-        help_heading = "HPGL"
-    )]
-    overcut: f64,
-    /// HPGL cutter: drag-knife blade offset, mm.
-    #[arg(
-        long,
-        default_value_t = 0.25,
-        requires = "cutter",
-        help_heading = "HPGL"
-    )]
-    knife_offset: f64,
+    /// HPGL cutter: cut past the start of closed outlines, mm [default: 1].
+    #[arg(long, help_heading = "HPGL")]
+    overcut: Option<f64>,
+    /// HPGL cutter: drag-knife blade offset, mm [default: 0.25].
+    #[arg(long, help_heading = "HPGL")]
+    knife_offset: Option<f64>,
     /// HPGL: mirror left–right (cutting on the back of the media).
     #[arg(long, help_heading = "HPGL")]
     mirror: bool,
@@ -186,6 +195,9 @@ pub(crate) struct PlotArgs {
     /// HP-GL's -32768,32767; HP-GL/2 devices take up to ±1073741823).
     #[arg(long, value_name = "MIN,MAX", value_parser = parse_range, allow_hyphen_values = true, help_heading = "HPGL")]
     device_range: Option<[i32; 2]>,
+    /// HPGL: plotter units per millimetre [default: 40].
+    #[arg(long, value_name = "UNITS", help_heading = "HPGL")]
+    units_per_mm: Option<f64>,
 
     #[command(flatten)]
     speeds: SpeedArgs,
@@ -325,28 +337,57 @@ impl PlotArgs {
         }
     }
 
-    /// What `moyo plot` asks of the library.
-    fn job(&self) -> PlotJob {
-        let format = match self.format() {
-            OutputFormat::Svg => {
+    /// What `moyo plot` asks of the library, for `device` (from
+    /// --device, or the drawing's own `[device]`).
+    fn job(&self, device: Option<Device>) -> Result<PlotJob, CliError> {
+        let format = match (self.format(), device) {
+            (Some(OutputFormat::Svg), Some(_)) => {
+                return Err(CliError::Message(
+                    "--device: writes G-code or HPGL, but the output is SVG (name it .gcode or .hpgl, or give --format)"
+                        .into(),
+                ))
+            }
+            (Some(OutputFormat::Svg), None) => {
                 PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision))
             }
-            OutputFormat::Gcode => PlotFormat::Gcode(self.gcode_options()),
-            OutputFormat::Hpgl => PlotFormat::Hpgl(self.hpgl_options()),
+            (Some(OutputFormat::Gcode) | None, Some(Device::Gcode(o))) => {
+                PlotFormat::Gcode(self.gcode_options(o))
+            }
+            (Some(OutputFormat::Hpgl) | None, Some(Device::Hpgl(o))) => {
+                PlotFormat::Hpgl(self.hpgl_options(o))
+            }
+            (Some(asked), Some(_)) => {
+                let (asked, device) = match asked {
+                    OutputFormat::Gcode => ("G-code", "an HPGL"),
+                    _ => ("HPGL", "a G-code"),
+                };
+                return Err(CliError::Message(format!(
+                    "--device: the output is {asked}, but the device is {device} machine"
+                )));
+            }
+            (Some(OutputFormat::Gcode), None) => {
+                PlotFormat::Gcode(self.gcode_options(GcodeOptions::default()))
+            }
+            (Some(OutputFormat::Hpgl), None) => {
+                PlotFormat::Hpgl(self.hpgl_options(HpglOptions::DEFAULT))
+            }
+            (None, None) => PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision)),
         };
         let preview = self.png.as_ref().map(|_| {
             Preview::DEFAULT
                 .with_dpi(self.dpi)
                 .with_show_travel(self.show_travel)
         });
-        PlotJob::new(format)
+        Ok(PlotJob::new(format)
             .with_stages(self.plot_options())
             .with_silhouettes(self.silhouettes)
-            .with_preview(preview)
+            .with_preview(preview))
     }
 
-    fn format(&self) -> OutputFormat {
-        self.format.unwrap_or_else(|| {
+    /// The format asked for: --format, else the output's extension when
+    /// it names one (.gcode, .nc, .ngc, .g; .hpgl, .plt, .hgl, .svg).
+    fn format(&self) -> Option<OutputFormat> {
+        self.format.or_else(|| {
             let ext = self
                 .output
                 .extension()
@@ -354,40 +395,133 @@ impl PlotArgs {
                 .unwrap_or("")
                 .to_ascii_lowercase();
             match ext.as_str() {
-                "gcode" | "nc" | "ngc" | "g" => OutputFormat::Gcode,
-                "hpgl" | "plt" | "hgl" => OutputFormat::Hpgl,
-                _ => OutputFormat::Svg,
+                "gcode" | "nc" | "ngc" | "g" => Some(OutputFormat::Gcode),
+                "hpgl" | "plt" | "hgl" => Some(OutputFormat::Hpgl),
+                "svg" => Some(OutputFormat::Svg),
+                _ => None,
             }
         })
     }
 
-    fn gcode_options(&self) -> GcodeOptions {
-        GcodeOptions::default()
-            .with_pen_commands(self.pen_up.clone(), self.pen_down.clone())
-            .with_pen_delay_s(self.pen_delay)
-            .with_feed_down_mm_min(self.feed)
-            .with_feed_up_mm_min((self.travel_feed > 0.0).then_some(self.travel_feed))
-            .with_origin(match self.origin {
-                OriginArg::BottomLeft => Origin::BottomLeft,
-                OriginArg::TopLeft => Origin::TopLeft,
-            })
-            .with_flip_y(self.flip_y)
+    fn runs(&self, runs: RunOptions) -> RunOptions {
+        let runs = match self.refill {
+            Some(mm) => runs.with_refill_mm(Some(mm)).with_refill_at(self.refill_at),
+            None => runs,
+        };
+        match self.from_distance {
+            Some(mm) => runs.with_from_distance_mm(mm),
+            None => runs,
+        }
     }
 
-    fn hpgl_options(&self) -> HpglOptions {
-        let cutter = self.cutter.then(|| {
-            let mut c = CutterOptions::DEFAULT;
-            c.overcut_mm = self.overcut;
-            c.knife_offset_mm = self.knife_offset;
-            c
-        });
-        let o = HpglOptions::DEFAULT
-            .with_cutter(cutter)
-            .with_mirror(self.mirror, false);
-        match self.device_range {
-            Some([min, max]) => o.with_device_range(min, max),
-            None => o,
+    /// `base` (the device's, or the defaults) with the flags given.
+    fn gcode_options(&self, base: GcodeOptions) -> GcodeOptions {
+        let mut o = base;
+        if let Some(up) = &self.pen_up {
+            o.pen_up = up.clone();
         }
+        if let Some(down) = &self.pen_down {
+            o.pen_down = down.clone();
+        }
+        if let Some(delay) = self.pen_delay {
+            o = o.with_pen_delay_s(delay);
+        }
+        if let Some(feed) = self.feed {
+            o = o.with_feed_down_mm_min(feed);
+        }
+        if let Some(travel) = self.travel_feed {
+            o = o.with_feed_up_mm_min((travel != 0.0).then_some(travel));
+        }
+        if let Some(origin) = self.origin {
+            o = o.with_origin(match origin {
+                OriginArg::BottomLeft => Origin::BottomLeft,
+                OriginArg::TopLeft => Origin::TopLeft,
+            });
+        }
+        if self.flip_y {
+            o = o.with_flip_y(true);
+        }
+        if self.arcs.is_some() {
+            o = o.with_arcs(self.arcs);
+        }
+        let runs = self.runs(o.runs);
+        o.with_runs(runs)
+    }
+
+    /// `base` (the device's, or the defaults) with the flags given.
+    fn hpgl_options(&self, base: HpglOptions) -> HpglOptions {
+        let mut o = base;
+        if self.cutter || self.overcut.is_some() || self.knife_offset.is_some() {
+            let mut c = o.cutter.unwrap_or(CutterOptions::DEFAULT);
+            if let Some(mm) = self.overcut {
+                c.overcut_mm = mm;
+            }
+            if let Some(mm) = self.knife_offset {
+                c.knife_offset_mm = mm;
+            }
+            o = o.with_cutter(Some(c));
+        }
+        if self.mirror {
+            o = o.with_mirror(true, o.mirror_y);
+        }
+        if let Some([min, max]) = self.device_range {
+            o = o.with_device_range(min, max);
+        }
+        if let Some(units) = self.units_per_mm {
+            o = o.with_units_per_mm(units);
+        }
+        o.with_runs(self.runs(o.runs))
+    }
+}
+
+/// `X,Y`: two numbers.
+fn parse_point(s: &str) -> Result<[f64; 2], String> {
+    let (x, y) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected X,Y, got '{s}'"))?;
+    let number = |t: &str| t.trim().parse::<f64>().map_err(|e| format!("'{t}': {e}"));
+    Ok([number(x)?, number(y)?])
+}
+
+/// The device `--device` names: a built-in profile, else a profile file.
+fn device_arg(arg: &str) -> Result<Device, CliError> {
+    let spec = match BuiltIn::get(arg) {
+        Some(b) => DeviceSpec::parse(b.text)?,
+        None => {
+            let path = Path::new(arg);
+            if !path.is_file() {
+                let names: Vec<&str> = BUILT_IN.iter().map(|b| b.name).collect();
+                return Err(CliError::Message(format!(
+                    "--device: '{arg}' is neither a built-in profile ({}) nor a profile file",
+                    names.join(", ")
+                )));
+            }
+            let text = moyo::input::read_text(path)
+                .map_err(|e| CliError::Message(format!("{arg}: {e}")))?;
+            DeviceSpec::parse(&text).map_err(|e| CliError::Message(format!("{arg}: {e}")))?
+        }
+    };
+    spec.resolve()
+        .map_err(|e| CliError::Message(format!("--device {arg}: {e}")))
+}
+
+/// The `[device]` of the scene description a moyo SVG carries, if any.
+fn embedded_device(path: &Path) -> Result<Option<Device>, CliError> {
+    let Ok(text) = moyo::input::read_text(path) else {
+        // The import reports an unreadable file.
+        return Ok(None);
+    };
+    let Some(description) = moyo::embedded_description(&text) else {
+        return Ok(None);
+    };
+    let Ok(spec) = moyo::SceneSpec::parse(&description, moyo::Format::Toml) else {
+        return Ok(None);
+    };
+    match &spec.device {
+        Some(device) => device.resolve().map(Some).map_err(|e| {
+            CliError::Message(format!("{} (embedded description): {e}", path.display()))
+        }),
+        None => Ok(None),
     }
 }
 
@@ -403,7 +537,11 @@ fn parse_range(s: &str) -> Result<[i32; 2], String> {
 /// `moyo plot`.
 pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     let speeds = args.speeds.speeds()?;
-    let job = args.job();
+    let device = match &args.device {
+        Some(arg) => Some(device_arg(arg)?),
+        None => embedded_device(&args.input)?,
+    };
+    let job = args.job(device)?;
     job.stages
         .validate("plot")
         .map_err(|e| CliError::Message(format!("options: {e}")))?;
@@ -431,6 +569,9 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
         duration(s.plot_time_s),
         duration(s.plot_time_accel_s)
     );
+    for w in &plotted.warnings {
+        eprintln!("warning: {w}");
+    }
     warn_outside_page(&plotted.scene);
     Ok(())
 }
@@ -523,4 +664,28 @@ pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     };
     row(&mut out, "total", total).map_err(stdout_error)?;
     Ok(())
+}
+
+/// `moyo devices [NAME]`.
+pub(crate) fn devices(name: Option<&str>) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    match name {
+        Some(name) => {
+            let b = BuiltIn::get(name).ok_or_else(|| {
+                let names: Vec<&str> = BUILT_IN.iter().map(|b| b.name).collect();
+                CliError::Message(format!(
+                    "no device profile '{name}'; built in: {}",
+                    names.join(", ")
+                ))
+            })?;
+            write!(out, "{}", b.text).map_err(stdout_error)
+        }
+        None => {
+            let width = BUILT_IN.iter().map(|b| b.name.len()).max().unwrap_or(0);
+            for b in BUILT_IN {
+                writeln!(out, "{:width$}  {}", b.name, b.about()).map_err(stdout_error)?;
+            }
+            Ok(())
+        }
+    }
 }

@@ -34,6 +34,7 @@ pub use validate::FieldRange;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, LineCol, Result};
+pub use crate::output::device::DeviceSpec;
 use crate::scene::traditional::{self, Palette};
 use crate::units::{Margins, Orientation, Page, PaperName};
 
@@ -106,6 +107,11 @@ pub struct SceneSpec {
     /// Final adjustment of single trees, flowers and leaves by id.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub adjust: Vec<AdjustSpec>,
+    /// The machine the design is plotted on ([`DeviceSpec`]): what `moyo
+    /// render -o x.gcode` writes for, and what `moyo plot` finds again in
+    /// the SVG.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub device: Option<DeviceSpec>,
 }
 
 /// Paper size, orientation and margins.

@@ -219,6 +219,9 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
     }
 
     s.plot.validate("plot")?;
+    if let Some(device) = &s.device {
+        device.resolve()?;
+    }
 
     let mut names = BTreeSet::new();
     for (i, layer) in s.layers.iter().enumerate() {

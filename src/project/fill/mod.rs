@@ -559,6 +559,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         }],
         plot: PlotSpec::default(),
         adjust: Vec::new(),
+        device: None,
     }
 }
 
