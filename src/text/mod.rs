@@ -119,18 +119,22 @@ impl Lettering {
     /// The missing characters quoted for a message: `'秋', '庭'`, the
     /// first ten of them and how many more.
     pub fn missing_list(&self) -> String {
-        const SHOWN: usize = 10;
-        let mut list: Vec<String> = self
-            .missing
-            .iter()
-            .take(SHOWN)
-            .map(|c| format!("'{}'", c.escape_debug()))
-            .collect();
-        if self.missing.len() > SHOWN {
-            list.push(format!("and {} more", self.missing.len() - SHOWN));
-        }
-        list.join(", ")
+        quoted(&self.missing)
     }
+}
+
+/// `chars` quoted for a message, the first ten and how many more.
+pub(crate) fn quoted(chars: &[char]) -> String {
+    const SHOWN: usize = 10;
+    let mut list: Vec<String> = chars
+        .iter()
+        .take(SHOWN)
+        .map(|c| format!("'{}'", c.escape_debug()))
+        .collect();
+    if chars.len() > SHOWN {
+        list.push(format!("and {} more", chars.len() - SHOWN));
+    }
+    list.join(", ")
 }
 
 /// Lays `text` out in single strokes (see the module documentation).
