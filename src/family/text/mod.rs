@@ -1,5 +1,6 @@
-//! The `text` family: words on the page in single-stroke letters (see
-//! [`TextSpec`]; the lettering itself is [`crate::text`]'s).
+//! The `text` family (docs/SPEC.md §8): words on the page in
+//! single-stroke letters (see [`TextSpec`]; the lettering itself is
+//! [`crate::text`]'s).
 //!
 //! Each drawn character is one path, id `<layer>.<text>.glyph-<i>`, its
 //! strokes subpaths, unfilled: the pen draws the letters' lines and
