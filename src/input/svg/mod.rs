@@ -273,7 +273,7 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
     )?;
     drop(tree);
 
-    let mut warnings = source.texts.warnings();
+    let mut warnings = source.texts.warnings(walked.texts);
     let mut plural = |n: usize, one: &str, many: &str, rest: &str| {
         if n > 0 {
             let noun = if n == 1 { one } else { many };

@@ -353,11 +353,10 @@ impl Texts {
         }
     }
 
-    /// One sentence per kind of news: the font substitution, missing
-    /// characters, and the text left out.
-    pub(super) fn warnings(&self) -> Vec<String> {
+    /// One sentence per kind of news: the font substitution (for the `n`
+    /// texts drawn), missing characters, and the text left out.
+    pub(super) fn warnings(&self, n: usize) -> Vec<String> {
         let mut out = Vec::new();
-        let n = self.laid.iter().flatten().count();
         if n > 0 {
             let elements = if n == 1 { "element" } else { "elements" };
             let fonts = if self.families.is_empty() {

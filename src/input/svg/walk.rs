@@ -50,6 +50,8 @@ pub(super) struct Walked {
     pub invisible: usize,
     /// Groups with a clip path that cuts, a mask or a filter (not applied).
     pub effects: usize,
+    /// Texts drawn (a text a `use` repeats, as often as it is drawn).
+    pub texts: usize,
 }
 
 /// The most segments (lines and curves) an imported SVG may hold: the
@@ -99,6 +101,7 @@ fn walk_within(
             unpainted: 0,
             invisible: 0,
             effects: 0,
+            texts: 0,
         },
     };
     walker.group(tree.root(), None)?;
@@ -274,6 +277,7 @@ impl Walker<'_> {
             fill: p.fill().map(|f| paint_color(f.paint())),
             glyphs: true,
         });
+        self.walked.texts += 1;
         Ok(())
     }
 }

@@ -123,6 +123,12 @@ fn transforms_of_the_text_and_its_groups_and_each_use_place_it() {
     assert_eq!(all.len(), 2, "{all:?}");
     let (a, b) = (all[0].1.bounding_box(), all[1].1.bounding_box());
     assert!(near(b.x0 - a.x0, 100.0, 1e-4) && near(b.y1 - a.y1, 50.0, 1e-4));
+    // Counted as drawn: twice.
+    assert!(
+        imported.warnings[0].starts_with("2 text elements drawn in "),
+        "{:?}",
+        imported.warnings
+    );
     // The text's id is its path's.
     let mut ids = Vec::new();
     imported.scene.visit_paths(|_, p, _| ids.push(p.id.clone()));
@@ -276,4 +282,31 @@ fn odd_text_draws_what_it_can_and_never_panics() {
     assert_eq!(imported.scene.path_count(), 1);
     let imported = import(&doc(cases[7]));
     assert_eq!(imported.scene.path_count(), 1);
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Any characters, sizes, positions and anchors: drawn or refused,
+    /// never a panic, and a drawn text stays one path.
+    #[test]
+    fn any_text_content_and_attributes_import_without_panic(
+        content in "\\PC{0,80}",
+        size in "[-0-9.eEm%px ]{0,8}",
+        x in "[-0-9.eE%]{0,6}",
+        anchor in "(start|middle|end|bogus)",
+    ) {
+        let escaped = content
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;");
+        let body = format!(
+            r#"<text x="{x}" y="50" font-size="{size}" text-anchor="{anchor}">{escaped}<tspan dy="2">{escaped}</tspan></text>"#
+        );
+        if let Ok(imported) =
+            crate::input::import_svg(&doc(&body), &crate::input::ImportOptions::DEFAULT)
+        {
+            proptest::prop_assert!(imported.scene.path_count() <= 1);
+        }
+    }
 }
