@@ -11,17 +11,17 @@
 //! line's start, middle or end on x = 0.
 //!
 //! The fonts (`src/text/fonts/`, whose README gives their source and
-//! licence) are Hershey's, in James Hurt's format as distributed by Jeff
-//! Epler and packaged by Debian (`hershey-fonts-data`): the simplex sans
+//! licence) are Hershey's, in James Hurt's format, as Debian packages
+//! them (`hershey-fonts-data` 0.1-1.1, byte for byte): the simplex sans
 //! serif `futural` ([`Font::Sans`]) and script `scripts` ([`Font::Script`])
 //! for printable ASCII, and `japanese` for both: hiragana and katakana
 //! (with the voiced forms, ゐ ゑ ヰ ヱ, and small kana drawn as their
 //! full-size kana at 70 %), 。、ー and 24 kanji (日円年大国人東中本京出時上者
 //! and 一二三四五六七十入九). The Japanese glyphs draw each brush stroke as a
-//! pair of lines. Other kanji are not there yet: the one licensed
-//! stroke-order source of them all, KanjiVG, is under CC BY-SA 3.0, whose
-//! share-alike terms would bind a font built from it, so it is not
-//! embedded in a crate under MIT OR Apache-2.0.
+//! pair of lines. Other kanji are not there yet: the licensed
+//! stroke-order data that covers them, KanjiVG (some 6,700 characters),
+//! is under CC BY-SA 3.0, whose share-alike terms would bind a font built
+//! from it, so it is not embedded in a crate under MIT OR Apache-2.0.
 //!
 //! Full-width ASCII, typographer's quotes, dashes and spaces fall back on
 //! their plain forms (an em dash has a line of its own). A character with
