@@ -59,7 +59,8 @@
 //! splines), [`lsystem`] the L-system engine (rules, turtle, the
 //! stroke-guided sketch), [`vine`] the twining-vine growth simulation (3D
 //! stems and leaves round supports), [`motif`] the motif library,
-//! [`templates`] the built-in scenes, [`units`] paper sizes and lengths.
+//! [`templates`] the built-in scenes, [`text`] single-stroke lettering in
+//! the built-in Hershey fonts, [`units`] paper sizes and lengths.
 //! Without the default `cli` feature the crate is the library alone.
 
 // Lints are set in Cargo.toml. Unit tests do not use every dev-dependency
@@ -88,6 +89,7 @@ pub mod spec;
 #[cfg(feature = "studio")]
 pub mod studio;
 pub mod templates;
+pub mod text;
 pub mod units;
 
 // The chosen entry points, flat as kurbo's: a description becomes a

@@ -59,6 +59,7 @@ pub const ALL: &[Template] = templates![
     "zentangle-geometric",
     "zentangle-voronoi",
     "wagara",
+    "text-titled",
     "kimono-tangles",
     "delaunay-lowpoly",
     "lsystem-plant-a",

@@ -6,8 +6,10 @@
 //! uses. `kimono` (tree sets and backgrounds on the eight tree rules),
 //! `paths` (user paths placed and repeated), `voronoi` (cells, Delaunay
 //! edges, stipples and tours in a region), `zentangle` (the filling
-//! process), `lsystem` (the L-system engine and the stroke-guided sketch)
-//! and `vine` (the twining-vine simulation, seen through a camera).
+//! process), `lsystem` (the L-system engine and the stroke-guided sketch),
+//! `vine` (the twining-vine simulation, seen through a camera), `wagara`
+//! (traditional grounds) and `text` (titles and signatures in
+//! single-stroke letters).
 //!
 //! Each table type implements [`Family`]; the registry below lists one
 //! line per table, and the [`families!`](registry::families) macro makes
@@ -87,6 +89,11 @@ families! {
             /// Traditional grounds (和柄) filling a region as one seamless repeat.
             #[serde(default, skip_serializing_if = "Vec::is_empty")]
             wagara: many Wagara(WagaraSpec) by build,
+        }
+        text {
+            /// Titles and signatures in single-stroke letters.
+            #[serde(default, skip_serializing_if = "Vec::is_empty")]
+            text: many Text(TextSpec) by build,
         }
     }
 }

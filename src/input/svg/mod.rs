@@ -54,9 +54,27 @@
 //! - **Paint.** A filled path keeps its fill colour in [`Style::fill`](crate::scene::Style::fill) (the
 //!   region that hatching and occlusion work on); the stroke is implied by
 //!   the pen. Paths with neither fill nor stroke are dropped.
-//! - **Not imported, with a warning:** text (moyo is built without fonts;
-//!   convert text to paths first), raster images, and the effect of clip
-//!   paths, masks and filters (the paths are imported unclipped).
+//! - **Text** (`text`, `tspan`) is drawn in single strokes, in moyo's
+//!   built-in Hershey font ([`crate::text`]), in place of the fonts the
+//!   document names (one warning says so): at its `x` and `y` on the
+//!   baseline, by its `text-anchor`, at a cap height of 0.7 times its
+//!   `font-size`, through every transform above it. Its fill colour (its
+//!   stroke's, when stroked) chooses the pen as a filled path's does, but
+//!   the glyphs are lines and fill nothing. A character without a glyph
+//!   is drawn as a box and named in a warning. At most
+//!   [`MAX_CHARS`](crate::text::MAX_CHARS) characters are drawn from one
+//!   file; text elements past them are skipped with a warning. Read:
+//!   the characters of `text`, `tspan` and `a`; the first length of `x`,
+//!   `y`, `dx` and `dy`; `font-size`, `text-anchor` and `xml:space` as
+//!   attributes or in `style`, inherited. Not read: a stylesheet's font
+//!   size or anchor (its paint is), a `tspan`'s own paint (the text's is
+//!   used), per-character positions, `rotate`, `textLength` and vertical
+//!   writing; the letters' widths are the Hershey font's, not the named
+//!   font's.
+//! - **Not imported, with a warning:** flowed text (Inkscape's
+//!   `flowRoot`) and text along a path (`textPath`), raster images, and
+//!   the effect of clip paths, masks and filters (the paths are imported
+//!   unclipped).
 //!
 //! Bad input is an [`Error`], never a panic: an empty file, malformed XML, a
 //! root element other than `<svg>`, a document without a usable size, and
@@ -85,19 +103,22 @@
 //!
 //! 1. `scan`: a pass over the raw XML for what usvg drops or cannot tell —
 //!    the root element, Inkscape layers (given ids where they lack one, so
-//!    that usvg's groups can be matched to them), text and images — and,
-//!    through `numbers`, a check of every number that becomes geometry
-//!    (svgtypes parses them as usvg will).
+//!    that usvg's groups can be matched to them), text (laid out by
+//!    `text`, each text element replaced by a stand-in path that usvg
+//!    places and paints) and images — and, through `numbers`, a check of
+//!    every number that becomes geometry (svgtypes parses them as usvg
+//!    will).
 //! 2. usvg builds its tree; `page` takes the page size from it, exact in
 //!    `f64` where the source allows.
 //! 3. `walk`: usvg's tree to paths in page millimetres, each with its
-//!    layer, paint and id.
+//!    layer, paint and id; a text's stand-in becomes its glyphs.
 //! 4. `pens`: paths to pens (by layer or by colour), then the scene.
 
 mod numbers;
 mod page;
 mod pens;
 mod scan;
+mod text;
 mod walk;
 
 #[cfg(test)]
@@ -186,15 +207,24 @@ pub struct Imported {
 /// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="20mm"
 ///     viewBox="0 0 400 200">
 ///   <circle cx="100" cy="100" r="50" stroke="red" fill="none"/>
-///   <text x="10" y="20">not a line</text>
+///   <text x="10" y="180" font-size="20">signed</text>
+///   <image href="photo.png" width="10" height="10"/>
 /// </svg>"#;
 /// let imported = import_svg(svg, &ImportOptions::DEFAULT)?;
 /// // Millimetres: the viewBox is ten units to the millimetre.
 /// let page = &imported.scene.page;
 /// assert_eq!((page.width, page.height), (40.0, 20.0));
-/// assert_eq!(imported.scene.path_count(), 1);
-/// // What could not be plotted is said, not dropped silently.
-/// assert!(imported.warnings.iter().any(|w| w.contains("text")));
+/// // The circle, and the text in single strokes: one path.
+/// assert_eq!(imported.scene.path_count(), 2);
+/// // What was changed or could not be plotted is said, not done silently.
+/// assert_eq!(
+///     imported.warnings,
+///     [
+///         "1 text element drawn in moyo's single-stroke Hershey Sans in place of \
+///          the document's font",
+///         "skipped 1 image: raster images cannot be plotted",
+///     ]
+/// );
 /// # Ok::<(), moyo::Error>(())
 /// ```
 ///
@@ -211,7 +241,7 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
         ));
     }
     let doc = parse_xml(text)?;
-    let source = scan::scan(text, &doc)?;
+    let source = scan::scan(text, &doc, options.px_per_inch)?;
     let usvg_options = usvg::Options {
         dpi: options.px_per_inch as f32,
         // Images are never imported: don't decode them, and never read
@@ -238,23 +268,21 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
     drop(doc);
 
     let page = page::page_of(&tree, exact_size, mm_per_px)?;
-    let walked = walk::walk(&tree, Affine::scale(mm_per_px), &source.layers)?;
+    let walked = walk::walk(
+        &tree,
+        Affine::scale(mm_per_px),
+        &source.layers,
+        &source.texts.laid,
+    )?;
     drop(tree);
 
-    let mut warnings = Vec::new();
+    let mut warnings = source.texts.warnings(walked.texts);
     let mut plural = |n: usize, one: &str, many: &str, rest: &str| {
         if n > 0 {
             let noun = if n == 1 { one } else { many };
             warnings.push(format!("skipped {n} {noun}: {rest}"));
         }
     };
-    plural(
-        source.texts,
-        "text element",
-        "text elements",
-        "text is not imported (convert it to paths first, \
-         e.g. Inkscape's Path > Object to Path)",
-    );
     plural(
         source.images,
         "image",

@@ -328,7 +328,8 @@ pub(super) fn assemble(
                     ids.unique(&wanted),
                     d.path,
                     Style {
-                        fill: d.fill,
+                        // Glyphs are lines: their fill chose the pen.
+                        fill: d.fill.filter(|_| !d.glyphs),
                         ..Style::default()
                     },
                 );
@@ -504,7 +505,8 @@ mod tests {
         );
         // The sub-layer's wave belongs to pen 1.
         assert_eq!(scene.pen_stats(1).paths, 3);
-        assert_eq!(scene.pen_stats(2).paths, 1);
+        // The circle and the title.
+        assert_eq!(scene.pen_stats(2).paths, 2);
         let all = paths(scene);
         assert_eq!(all[1].2.fill, Some(Color::rgb(0xd4, 0xaa, 0x00)));
         // The layer's translate(10,-5) is baked in.
@@ -516,8 +518,8 @@ mod tests {
         assert_eq!(
             imported.warnings,
             [
-                "skipped 1 text element: text is not imported (convert it to paths \
-                 first, e.g. Inkscape's Path > Object to Path)",
+                "1 text element drawn in moyo's single-stroke Hershey Sans in place of \
+                 sans-serif",
                 "skipped layer '3 guides': it is hidden",
             ]
         );

@@ -1,14 +1,17 @@
 //! The pass over the raw XML before usvg sees it: what usvg drops or
 //! cannot tell. It checks the root element, finds the top-level Inkscape
 //! layers (with their labels and visibility, and an id for each so that
-//! usvg's groups can be matched to them), counts text and images, and has
-//! every number that becomes geometry checked (`numbers`).
+//! usvg's groups can be matched to them), lays out text (`text`, which
+//! puts a stand-in for each text element in the source handed to usvg),
+//! counts images, and has every number that becomes geometry checked
+//! (`numbers`).
 
 use std::collections::HashMap;
 
 use resvg::usvg::roxmltree;
 
 use super::numbers::check_numbers;
+use super::text::Texts;
 use crate::error::{Error, LineCol, Result};
 use crate::scene::Layer;
 
@@ -17,7 +20,7 @@ const INKSCAPE_NS: &str = "http://www.inkscape.org/namespaces/inkscape";
 
 /// Is this an element of the SVG vocabulary (namespaced or, as usvg also
 /// accepts, without namespace) with this local name?
-fn is_svg(node: roxmltree::Node<'_, '_>, name: &str) -> bool {
+pub(super) fn is_svg(node: roxmltree::Node<'_, '_>, name: &str) -> bool {
     node.is_element()
         && node.tag_name().name() == name
         && matches!(node.tag_name().namespace(), None | Some(SVG_NS))
@@ -42,23 +45,25 @@ pub(super) struct LayerSource {
 pub(super) struct Source {
     /// The top-level layers, in document order.
     pub layers: Vec<LayerSource>,
-    /// `text` and `flowRoot` elements.
-    pub texts: usize,
+    /// The text, laid out.
+    pub texts: Texts,
     /// `image` elements.
     pub images: usize,
     /// Layers that could not be located in the source.
     pub warnings: Vec<String>,
     /// The source with ids given to layers that had none (or shared one),
-    /// so that usvg's groups can be matched to layers by id.
+    /// so that usvg's groups can be matched to layers by id, and text
+    /// elements replaced by their stand-ins.
     pub rewritten: Option<String>,
 }
 
-/// Scans `doc`, parsed from `text`.
+/// Scans `doc`, parsed from `text`, whose lengths have `px_per_inch`
+/// pixels to the inch.
 ///
 /// # Errors
 /// [`Error::Parse`] when the root is not `<svg>`; [`Error::Invalid`] for a
 /// number that cannot be plotted.
-pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>) -> Result<Source> {
+pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>, px_per_inch: f64) -> Result<Source> {
     let root = doc.root_element();
     if !is_svg(root, "svg") {
         let name = root.tag_name().name();
@@ -72,13 +77,10 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>) -> Result<Source> 
         });
     }
 
-    let mut texts = 0;
     let mut images = 0;
     let mut id_count: HashMap<&str, usize> = HashMap::new();
     for node in doc.descendants().filter(|n| n.is_element()) {
-        if is_svg(node, "text") || is_svg(node, "flowRoot") {
-            texts += 1;
-        } else if is_svg(node, "image") {
+        if is_svg(node, "image") {
             images += 1;
         }
         if let Some(id) = node.attribute("id") {
@@ -89,10 +91,12 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>) -> Result<Source> 
         }
     }
 
+    let mut texts = Texts::read(text, doc, px_per_inch);
+
     let mut layers = Vec::new();
     let mut warnings = Vec::new();
-    // (byte range replaced, replacement), applied back to front.
-    let mut edits: Vec<(std::ops::Range<usize>, String)> = Vec::new();
+    // (byte range replaced, replacement, the layer or text it is for).
+    let mut edits: Vec<(std::ops::Range<usize>, String, EditFor)> = Vec::new();
     let mut fresh = 0;
     for node in root.children().filter(|n| is_svg(*n, "g")) {
         if node.attribute((INKSCAPE_NS, "groupmode")) != Some("layer") {
@@ -129,13 +133,10 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>) -> Result<Source> 
                     None => after_tag_name(text, node).map(|at| (at..at, format!(" id=\"{id}\""))),
                 };
                 let Some(edit) = edit else {
-                    warnings.push(format!(
-                        "layer '{label}' could not be located in the source \
-                         (it comes from an entity?); its paths count as outside layers"
-                    ));
+                    warnings.push(unlocated_layer(&label));
                     continue;
                 };
-                edits.push(edit);
+                edits.push((edit.0, edit.1, EditFor::Layer(label.clone())));
                 id
             }
         };
@@ -148,10 +149,34 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>) -> Result<Source> 
         });
     }
 
-    let rewritten = (!edits.is_empty()).then(|| {
+    edits.extend(
+        texts
+            .edits
+            .drain(..)
+            .map(|e| (e.range, e.markup, EditFor::Text(e.index))),
+    );
+    // Edits that overlap one before them (only elements from entities
+    // can) are left out: their layer or text was not located.
+    edits.sort_by_key(|(range, _, _)| range.start);
+    let mut kept = Vec::with_capacity(edits.len());
+    let mut end = 0;
+    for (range, replacement, owner) in edits {
+        if range.start < end {
+            match owner {
+                EditFor::Layer(label) => warnings.push(unlocated_layer(&label)),
+                EditFor::Text(index) => {
+                    texts.laid[index] = None;
+                    texts.unlocated += 1;
+                }
+            }
+            continue;
+        }
+        end = range.end;
+        kept.push((range, replacement));
+    }
+    let rewritten = (!kept.is_empty()).then(|| {
         let mut out = text.to_string();
-        edits.sort_by_key(|(range, _)| std::cmp::Reverse(range.start));
-        for (range, replacement) in edits {
+        for (range, replacement) in kept.into_iter().rev() {
             out.replace_range(range, &replacement);
         }
         out
@@ -163,6 +188,21 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>) -> Result<Source> 
         warnings,
         rewritten,
     })
+}
+
+fn unlocated_layer(label: &str) -> String {
+    format!(
+        "layer '{label}' could not be located in the source \
+         (it comes from an entity?); its paths count as outside layers"
+    )
+}
+
+/// What an edit of the source is for.
+enum EditFor {
+    /// Giving the layer with this label an id.
+    Layer(String),
+    /// Putting the stand-in of this text in place of its element.
+    Text(usize),
 }
 
 /// The byte offset just after `<name` of `node`'s start tag, if the source
@@ -181,15 +221,15 @@ mod tests {
     use super::super::test_support::{doc, import};
 
     #[test]
-    fn text_and_images_are_skipped_with_warnings() {
+    fn images_are_skipped_with_warnings_and_text_is_drawn() {
         let imported = import(&doc(r#"<text x="10" y="10">Hello</text>
                <g><text x="10" y="20"><tspan>again</tspan></text></g>
                <image href="data:image/png;base64,iVBORw0KGgo=" width="10" height="10"/>
                <image xlink:href="/etc/passwd" width="10" height="10"/>
                <path d="M0 0 L5 5" stroke="black"/>"#));
-        assert_eq!(imported.scene.path_count(), 1);
+        assert_eq!(imported.scene.path_count(), 3);
         assert_eq!(imported.warnings.len(), 2, "{:?}", imported.warnings);
-        assert!(imported.warnings[0].starts_with("skipped 2 text elements: "));
+        assert!(imported.warnings[0].starts_with("2 text elements drawn in "));
         assert!(imported.warnings[1].starts_with("skipped 2 images: "));
     }
 }

@@ -1,10 +1,11 @@
 //! The walk over usvg's tree: every painted, visible path converted to
 //! page millimetres (all transforms baked in), with its layer, paint and
-//! id, and a count of what was left out.
+//! id, and a count of what was left out. A text's stand-in path is drawn
+//! as the text's glyphs.
 
 use std::collections::HashMap;
 
-use kurbo::{Affine, BezPath, Point};
+use kurbo::{Affine, BezPath, PathEl, Point};
 use resvg::usvg::{
     self,
     tiny_skia_path::{PathSegment, PathVerb},
@@ -12,6 +13,7 @@ use resvg::usvg::{
 
 use super::page::round_size;
 use super::scan::LayerSource;
+use super::text::{stand_in_index, Lettered};
 use crate::error::{Error, Result};
 use crate::geom::region::{FillRule, Region};
 use crate::scene::Color;
@@ -30,6 +32,9 @@ pub(super) struct Drawn {
     pub stroke: Option<(Color, f64)>,
     /// Fill colour.
     pub fill: Option<Color>,
+    /// The single-stroke glyphs of a text: line work only, whose fill
+    /// colour chooses the pen as a filled path's does but fills nothing.
+    pub glyphs: bool,
 }
 
 /// What the walk found, in paint order.
@@ -45,6 +50,8 @@ pub(super) struct Walked {
     pub invisible: usize,
     /// Groups with a clip path that cuts, a mask or a filter (not applied).
     pub effects: usize,
+    /// Texts drawn (a text a `use` repeats, as often as it is drawn).
+    pub texts: usize,
 }
 
 /// The most segments (lines and curves) an imported SVG may hold: the
@@ -55,13 +62,19 @@ pub(super) struct Walked {
 pub const MAX_IMPORT_SEGMENTS: usize = 10_000_000;
 
 /// Walks `tree`, mapping its coordinates to mm with `to_mm`; `layers` are
-/// the top-level layers the scan found, matched to usvg's groups by id.
+/// the top-level layers the scan found, matched to usvg's groups by id;
+/// `texts` the laid-out texts by number.
 ///
 /// # Errors
 /// [`Error::Invalid`] for a point beyond ±[`MAX_COORD`] mm, or more than
 /// [`MAX_IMPORT_SEGMENTS`] segments.
-pub(super) fn walk(tree: &usvg::Tree, to_mm: Affine, layers: &[LayerSource]) -> Result<Walked> {
-    walk_within(tree, to_mm, layers, MAX_IMPORT_SEGMENTS)
+pub(super) fn walk(
+    tree: &usvg::Tree,
+    to_mm: Affine,
+    layers: &[LayerSource],
+    texts: &[Option<Lettered>],
+) -> Result<Walked> {
+    walk_within(tree, to_mm, layers, texts, MAX_IMPORT_SEGMENTS)
 }
 
 /// [`walk`] with at most `max_segments` segments.
@@ -69,12 +82,14 @@ fn walk_within(
     tree: &usvg::Tree,
     to_mm: Affine,
     layers: &[LayerSource],
+    texts: &[Option<Lettered>],
     max_segments: usize,
 ) -> Result<Walked> {
     let mut walker = Walker {
         to_mm,
         segments: 0,
         max_segments,
+        texts,
         layer_of: layers
             .iter()
             .enumerate()
@@ -86,6 +101,7 @@ fn walk_within(
             unpainted: 0,
             invisible: 0,
             effects: 0,
+            texts: 0,
         },
     };
     walker.group(tree.root(), None)?;
@@ -98,6 +114,7 @@ struct Walker<'a> {
     segments: usize,
     /// The most there may be.
     max_segments: usize,
+    texts: &'a [Option<Lettered>],
     layer_of: HashMap<&'a str, usize>,
     walked: Walked,
 }
@@ -136,22 +153,14 @@ impl Walker<'_> {
             self.walked.invisible += 1;
             return Ok(());
         }
+        let to_page = self.to_mm * affine(p.abs_transform());
+        if let Some(text) = stand_in_index(p.data()).and_then(|i| self.texts.get(i)?.as_ref()) {
+            return self.glyphs(p, text, to_page, layer);
+        }
         // Checked before the path is built: the file size alone lets a
         // few very long paths hold far more segments than a plot needs.
-        // Counted as the scene's budget counts them: every element but a
-        // move.
         let verbs = p.data().verbs();
-        self.segments += verbs.iter().filter(|v| **v != PathVerb::Move).count();
-        if self.segments > self.max_segments {
-            return Err(Error::invalid(
-                "svg",
-                format!(
-                    "the paths hold more than {} segments in all, the most moyo imports",
-                    crate::output::grouped(self.max_segments)
-                ),
-            ));
-        }
-        let to_page = self.to_mm * affine(p.abs_transform());
+        self.count(verbs.iter().filter(|v| **v != PathVerb::Move).count())?;
         // Sized once: a vector grown by pushes holds room for four
         // elements, twice what the typical two-element path needs.
         let mut path = BezPath::with_capacity(verbs.len());
@@ -179,13 +188,7 @@ impl Walker<'_> {
                 PathSegment::Close => path.close_path(),
             }
         }
-        // The drawn width: the stroke is scaled with the path (by the
-        // geometric mean for non-uniform scales).
-        let scale = to_page.determinant().abs().sqrt();
-        let stroke = p.stroke().map(|s| {
-            let width = round_size(f64::from(s.width().get()) * scale);
-            (paint_color(s.paint()), width)
-        });
+        let stroke = stroke_of(p, to_page.determinant().abs().sqrt());
         // Downstream, fills are non-zero (like an SVG without fill-rule).
         // An even-odd fill is redrawn as the same area's normalised
         // contours (holes wound against their outline): every edge of an
@@ -207,9 +210,85 @@ impl Walker<'_> {
             path,
             stroke,
             fill: p.fill().map(|f| paint_color(f.paint())),
+            glyphs: false,
         });
         Ok(())
     }
+
+    /// Counts `segments` more, as the scene's budget counts them: every
+    /// element but a move.
+    ///
+    /// # Errors
+    /// When there are more than the most imported.
+    fn count(&mut self, segments: usize) -> Result<()> {
+        self.segments += segments;
+        if self.segments > self.max_segments {
+            return Err(Error::invalid(
+                "svg",
+                format!(
+                    "the paths hold more than {} segments in all, the most moyo imports",
+                    crate::output::grouped(self.max_segments)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Draws the glyphs of `text` where its stand-in `p` landed: mapped
+    /// to the page by `to_page`, with the stand-in's paint.
+    fn glyphs(
+        &mut self,
+        p: &usvg::Path,
+        text: &Lettered,
+        to_page: Affine,
+        layer: Option<usize>,
+    ) -> Result<()> {
+        let els = text.path.elements();
+        self.count(
+            els.iter()
+                .filter(|e| !matches!(e, PathEl::MoveTo(_)))
+                .count(),
+        )?;
+        let path = to_page * text.path.clone();
+        if let Some(pt) = path
+            .elements()
+            .iter()
+            .filter_map(PathEl::end_point)
+            .find(|pt| !(pt.x.abs() <= MAX_COORD && pt.y.abs() <= MAX_COORD))
+        {
+            let id = if text.id.is_empty() {
+                "(no id)"
+            } else {
+                &text.id
+            };
+            return Err(Error::invalid(
+                format!("text {id}"),
+                format!(
+                    "point ({:.3}, {:.3}) mm is outside ±{MAX_COORD} mm",
+                    pt.x, pt.y
+                ),
+            ));
+        }
+        self.walked.drawn.push(Drawn {
+            layer,
+            id: text.id.clone(),
+            path,
+            stroke: stroke_of(p, to_page.determinant().abs().sqrt()),
+            fill: p.fill().map(|f| paint_color(f.paint())),
+            glyphs: true,
+        });
+        self.walked.texts += 1;
+        Ok(())
+    }
+}
+
+/// The stroke's colour and drawn width: the width scaled with the path
+/// by `scale` (the geometric mean for non-uniform scales).
+fn stroke_of(p: &usvg::Path, scale: f64) -> Option<(Color, f64)> {
+    p.stroke().map(|s| {
+        let width = round_size(f64::from(s.width().get()) * scale);
+        (paint_color(s.paint()), width)
+    })
 }
 
 fn affine(t: usvg::Transform) -> Affine {
@@ -295,9 +374,10 @@ mod tests {
                           <path d="M5 5 h1 v1 h-1" stroke="black"/>"#);
         let tree = resvg::usvg::Tree::from_str(&text, &resvg::usvg::Options::default()).unwrap();
         // Three and three segments: a close is one, a move is not.
-        let walked = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 6).unwrap();
+        let none = [];
+        let walked = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], &none, 6).unwrap();
         assert_eq!(walked.drawn.len(), 2);
-        let e = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], 5).unwrap_err();
+        let e = super::walk_within(&tree, kurbo::Affine::IDENTITY, &[], &none, 5).unwrap_err();
         assert!(e.to_string().contains("more than 5 segments"), "{e}");
     }
 
