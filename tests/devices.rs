@@ -369,7 +369,7 @@ fn bad_devices_are_refused_and_nothing_is_written() {
         ),
         (
             &["--device", "typo.toml"],
-            "device.gcode.tool_change: unknown placeholder {pne}; allowed here: {pen}, {name}, {x}, {y}",
+            "device.gcode.tool_change: unknown placeholder {pne}; allowed here: {pen}, {name}, {layer}, {x}, {y}",
         ),
         (
             &["--device", "hp7475a", "--format", "gcode"],

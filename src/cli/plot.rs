@@ -490,10 +490,9 @@ fn device_arg(arg: &str) -> Result<Device, CliError> {
         None => {
             let path = Path::new(arg);
             if !path.is_file() {
-                let names: Vec<&str> = BUILT_IN.iter().map(|b| b.name).collect();
                 return Err(CliError::Message(format!(
                     "--device: '{arg}' is neither a built-in profile ({}) nor a profile file",
-                    names.join(", ")
+                    BuiltIn::names()
                 )));
             }
             let text = moyo::input::read_text(path)
@@ -672,10 +671,9 @@ pub(crate) fn devices(name: Option<&str>) -> Result<(), CliError> {
     match name {
         Some(name) => {
             let b = BuiltIn::get(name).ok_or_else(|| {
-                let names: Vec<&str> = BUILT_IN.iter().map(|b| b.name).collect();
                 CliError::Message(format!(
                     "no device profile '{name}'; built in: {}",
-                    names.join(", ")
+                    BuiltIn::names()
                 ))
             })?;
             write!(out, "{}", b.text).map_err(stdout_error)

@@ -76,6 +76,15 @@ impl BuiltIn {
         BUILT_IN.iter().find(|b| b.name == name)
     }
 
+    /// The built-in profiles' names, comma-separated, for messages.
+    pub fn names() -> String {
+        BUILT_IN
+            .iter()
+            .map(|b| b.name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
     /// Its `about` line.
     pub fn about(&self) -> String {
         DeviceSpec::parse(self.text)
@@ -140,10 +149,9 @@ impl DeviceSpec {
         let base = match &self.profile {
             Some(name) => {
                 let built_in = BuiltIn::get(name).ok_or_else(|| {
-                    let names: Vec<&str> = BUILT_IN.iter().map(|b| b.name).collect();
                     Error::invalid(
                         "device.profile",
-                        format!("unknown profile '{name}'; built in: {}", names.join(", ")),
+                        format!("unknown profile '{name}'; built in: {}", BuiltIn::names()),
                     )
                 })?;
                 let base = DeviceSpec::parse(built_in.text)?;

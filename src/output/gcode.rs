@@ -76,7 +76,7 @@ use super::runs::{self, RunOptions};
 use super::strokes::{pen_blocks, positive, PenBlock, Stroke, ToMachine};
 use super::template;
 use crate::error::{Error, Result};
-use crate::scene::Scene;
+use crate::scene::{LayerCodes, Scene};
 
 pub use super::strokes::MIN_TOLERANCE;
 
@@ -98,9 +98,10 @@ pub const PAGE_PLACEHOLDERS: &[&str] = &["page_width", "page_height"];
 
 /// Placeholders of [`GcodeOptions::tool_change`],
 /// [`GcodeOptions::pen_start`] and [`GcodeOptions::pen_end`]: the pen's
-/// number and name, and where the machine is (the end of the last move;
-/// 0, 0 before the first).
-pub const PEN_PLACEHOLDERS: &[&str] = &["pen", "name", "x", "y"];
+/// number and name, its layer (the label AxiDraw reads, number and codes
+/// included: [`LayerCodes::label`](crate::scene::LayerCodes::label)), and
+/// where the machine is (the end of the last move; 0, 0 before the first).
+pub const PEN_PLACEHOLDERS: &[&str] = &["pen", "name", "layer", "x", "y"];
 
 /// Placeholders of [`GcodeOptions::pause`]: the pen and why the plot
 /// stops (`pause before pen 2 red`, `refill pen 2 red`).
@@ -637,7 +638,7 @@ impl Writer<'_> {
             self.out.push('\n');
         }
         if let Some(template) = tool_change {
-            self.pen_template(template, block.number, &name);
+            self.pen_template(template, block);
         }
         let codes = block.codes;
         if codes.pause {
@@ -647,7 +648,7 @@ impl Writer<'_> {
             self.dwell(f64::from(ms) / 1000.0);
         }
         if let Some(template) = &self.o.pen_start {
-            self.pen_template(template, block.number, &name);
+            self.pen_template(template, block);
         }
         let settings = PenSettings {
             feed: match codes.speed {
@@ -676,7 +677,7 @@ impl Writer<'_> {
             }
         }
         if let Some(template) = &self.o.pen_end {
-            self.pen_template(template, block.number, &name);
+            self.pen_template(template, block);
         }
         Ok(())
     }
@@ -843,15 +844,20 @@ impl Writer<'_> {
     }
 
     /// A per-pen template.
-    fn pen_template(&mut self, template: &str, pen: u32, name: &str) {
-        let (pen, x, y) = (
-            pen.to_string(),
-            number_text(self.at.x),
-            number_text(self.at.y),
-        );
+    fn pen_template(&mut self, template: &str, block: &PenBlock<'_>) {
+        let pen = block.number.to_string();
+        let name = comment_text(block.name);
+        let layer = comment_text(&LayerCodes::label(block.number, block.name));
+        let (x, y) = (number_text(self.at.x), number_text(self.at.y));
         let text = template::fill(
             template,
-            &[("pen", &pen), ("name", name), ("x", &x), ("y", &y)],
+            &[
+                ("pen", &pen),
+                ("name", &name),
+                ("layer", &layer),
+                ("x", &x),
+                ("y", &y),
+            ],
         );
         self.lines(text.trim_end());
     }
