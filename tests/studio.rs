@@ -1,14 +1,19 @@
 //! The studio's HTTP API, over a real socket, as the page and any other
 //! client use it: the description in and out, errors as JSON with their
 //! place, the last good preview kept through errors, undo and redo,
-//! saving and opening inside the folder only, exports, the guard against
-//! other hosts and origins, and requests that are malformed or too large.
+//! saving and opening inside the folder only (regular files only),
+//! exports (capped in size), the guard against other hosts, origins and
+//! sites, `nosniff` on every answer, requests that are malformed or too
+//! large, strokes out of range, and connections that stall — past the
+//! connection cap, and past the process's open-file limit.
 
-use std::io::{Read, Write};
+use std::io::{BufRead, Read, Write};
 use std::net::{SocketAddr, TcpStream};
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
-use moyo::studio::{Studio, StudioOptions, MAX_BODY};
+use moyo::studio::{Studio, StudioLimits, StudioOptions, MAX_BODY};
 
 use crate::cli::tempdir;
 
@@ -156,14 +161,88 @@ fn json(addr: SocketAddr, method: &str, path: &str, body: &serde_json::Value) ->
 
 /// A studio on a free port in a new folder, started on `text`.
 pub(crate) fn studio(text: &str) -> (Studio, tempfile::TempDir) {
+    studio_with(text, "127.0.0.1:0", StudioLimits::default())
+}
+
+/// A studio on `addr` in a new folder, started on `text`, with `limits`.
+fn studio_with(text: &str, addr: &str, limits: StudioLimits) -> (Studio, tempfile::TempDir) {
     let dir = tempdir();
     let studio = Studio::start(StudioOptions {
         folder: dir.path().to_path_buf(),
         text: text.to_string(),
-        addr: "127.0.0.1:0".parse().unwrap(),
+        addr: addr.parse().unwrap(),
+        limits,
     })
     .unwrap();
     (studio, dir)
+}
+
+/// `moyo studio` running as its own process, ended when dropped.
+struct Running {
+    child: Child,
+    addr: SocketAddr,
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts `moyo studio ARGS --port 0` in `dir` with `env`, with at most
+/// `files` open files when given (`ulimit -n` in the shell that runs it),
+/// and reads the address it prints.
+fn command(dir: &Path, args: &[&str], env: &[(&str, &str)], files: Option<u32>) -> Running {
+    let moyo = assert_cmd::cargo::cargo_bin("moyo");
+    let mut cmd = match files {
+        Some(n) => {
+            let mut sh = Command::new("sh");
+            sh.arg("-c")
+                .arg(format!("ulimit -n {n} && exec \"$0\" \"$@\""))
+                .arg(moyo);
+            sh
+        }
+        None => Command::new(moyo),
+    };
+    cmd.current_dir(dir)
+        .arg("studio")
+        .args(args)
+        .args(["--port", "0"])
+        .envs(env.iter().copied())
+        .stderr(Stdio::piped());
+    let mut child = cmd.spawn().unwrap();
+    let mut line = String::new();
+    std::io::BufReader::new(child.stderr.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let url = line
+        .split_whitespace()
+        .find(|w| w.starts_with("http://"))
+        .unwrap_or_else(|| panic!("{line}"));
+    let addr = url
+        .trim_start_matches("http://")
+        .trim_end_matches('/')
+        .parse()
+        .unwrap();
+    Running { child, addr }
+}
+
+/// Whether the server has closed `stream` (waiting as long as it takes,
+/// up to two minutes): an end of file or a reset, not a timeout.
+fn closed_by_server(stream: &mut TcpStream) -> bool {
+    stream
+        .set_read_timeout(Some(Duration::from_secs(120)))
+        .unwrap();
+    let mut byte = [0_u8; 1];
+    match stream.read(&mut byte) {
+        Ok(0) => true,
+        Ok(_) => false,
+        Err(e) => matches!(
+            e.kind(),
+            std::io::ErrorKind::ConnectionReset | std::io::ErrorKind::ConnectionAborted
+        ),
+    }
 }
 
 #[test]
@@ -556,33 +635,13 @@ fn a_newer_edit_calls_off_the_render_before_it() {
 
 #[test]
 fn the_command_starts_on_a_json_description_as_toml_and_names_a_broken_one() {
-    use std::io::BufRead;
     let dir = tempdir();
     let spec = moyo::ValidSpec::parse(SCENE, moyo::Format::Toml).unwrap();
     let json = serde_json::to_string_pretty(spec.spec()).unwrap();
     std::fs::write(dir.path().join("scene.json"), &json).unwrap();
-    let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("moyo"))
-        .current_dir(dir.path())
-        .args(["studio", "scene.json", "--port", "0"])
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut line = String::new();
-    std::io::BufReader::new(child.stderr.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    let url = line
-        .split_whitespace()
-        .find(|w| w.starts_with("http://"))
-        .unwrap_or_else(|| panic!("{line}"));
-    let addr: SocketAddr = url
-        .trim_start_matches("http://")
-        .trim_end_matches('/')
-        .parse()
-        .unwrap();
-    let text = get(addr, "/api/scene").text();
-    let _ = child.kill();
-    let _ = child.wait();
+    let running = command(dir.path(), &["scene.json"], &[], None);
+    let text = get(running.addr, "/api/scene").text();
+    drop(running);
     // TOML now, the same description.
     let back = moyo::ValidSpec::parse(&text, moyo::Format::Toml).unwrap();
     assert_eq!(back.spec(), spec.spec());
@@ -666,5 +725,253 @@ fn switches_and_words_are_fields_too() {
     );
     assert_eq!(refused.status, 422);
     assert_eq!(refused.json()["path"], "layers[0].lsystem[0].style");
+    studio.stop();
+}
+
+#[test]
+fn stalled_connections_past_the_open_file_limit_do_not_stop_the_studio() {
+    // 300 connections that send nothing to a studio that may open 256
+    // files: it runs out of descriptors while accepting them, pauses,
+    // and lets the stalled ones go at their deadline (shortened here).
+    let dir = tempdir();
+    let mut running = command(
+        dir.path(),
+        &[],
+        &[("MOYO_STUDIO_HEADER_TIMEOUT_MS", "1000")],
+        Some(256),
+    );
+    let addr = running.addr;
+    let mut stalled: Vec<TcpStream> = (0..300)
+        .map(|_| TcpStream::connect(addr).unwrap())
+        .collect();
+    let answer = get(addr, "/api/state");
+    assert_eq!(answer.status, 200, "{}", answer.text());
+    for (i, stream) in stalled.iter_mut().enumerate() {
+        assert!(
+            closed_by_server(stream),
+            "stalled connection {i} still open"
+        );
+    }
+    assert!(
+        running.child.try_wait().unwrap().is_none(),
+        "the studio ended"
+    );
+    assert_eq!(get(addr, "/").status, 200);
+}
+
+#[test]
+fn connections_past_the_cap_wait_and_a_body_that_stalls_is_answered_408() {
+    let limits = StudioLimits {
+        header_timeout: Duration::from_millis(300),
+        body_timeout: Duration::from_millis(300),
+        connections: 2,
+    };
+    let (studio, _dir) = studio_with(SCENE, "127.0.0.1:0", limits);
+    let addr = studio.addr();
+    let mut stalled: Vec<TcpStream> = (0..5).map(|_| TcpStream::connect(addr).unwrap()).collect();
+    // Waits behind them, and is answered once they are let go.
+    assert_eq!(get(addr, "/api/scene").text(), SCENE);
+    for stream in &mut stalled {
+        assert!(closed_by_server(stream));
+    }
+    // A head that comes whole, then a body that does not.
+    let mut stream = TcpStream::connect(addr).unwrap();
+    stream
+        .set_read_timeout(Some(Duration::from_secs(120)))
+        .unwrap();
+    write!(
+        stream,
+        "PUT /api/scene HTTP/1.1\r\nHost: {addr}\r\nContent-Length: 100\r\n\r\nversion = "
+    )
+    .unwrap();
+    let mut answer = String::new();
+    let _ = stream.read_to_string(&mut answer);
+    assert!(answer.starts_with("HTTP/1.1 408"), "{answer}");
+    assert_eq!(get(addr, "/api/scene").text(), SCENE);
+    studio.stop();
+}
+
+#[test]
+fn every_answer_says_nosniff() {
+    let (studio, _dir) = studio(SCENE);
+    let addr = studio.addr();
+    let port = addr.port();
+    let foreign = raw(
+        addr,
+        format!(
+            "GET /api/scene HTTP/1.1\r\nHost: evil.example:{port}\r\nConnection: close\r\n\r\n"
+        )
+        .as_bytes(),
+    );
+    let answers = [
+        ("page", get(addr, "/")),
+        ("description", get(addr, "/api/scene")),
+        ("svg", get(addr, "/api/svg")),
+        ("no such route", get(addr, "/api/nothing")),
+        ("foreign host", foreign),
+        (
+            "invalid edit",
+            call(addr, "PUT", "/api/scene", &[], b"version = 1\nseed = -1\n"),
+        ),
+    ];
+    for (what, answer) in answers {
+        assert_eq!(
+            answer.header("x-content-type-options"),
+            Some("nosniff"),
+            "{what}: {}",
+            answer.status
+        );
+    }
+    studio.stop();
+}
+
+#[test]
+fn exports_from_other_sites_and_oversized_pngs_are_refused() {
+    // A0.
+    let (studio, _dir) = studio(&SCENE.replace("\"A5\"", "[841, 1189]"));
+    let addr = studio.addr();
+    let export = "/api/export?format=png&dpi=20";
+    let with = |header: &str| call(addr, "GET", export, &[header], b"").status;
+    // A page elsewhere: by its Origin, or, for a GET from an image or a
+    // link, which carries none, by what the browser says of the site.
+    assert_eq!(with("Origin: http://evil.example"), 403);
+    assert_eq!(with("Sec-Fetch-Site: cross-site"), 403);
+    assert_eq!(with("Sec-Fetch-Site: same-site"), 403);
+    // The studio's own page, the address typed, a program.
+    assert_eq!(with("Sec-Fetch-Site: same-origin"), 200);
+    assert_eq!(with("Sec-Fetch-Site: none"), 200);
+    assert_eq!(get(addr, export).status, 200);
+    // The page itself may be opened from a link anywhere.
+    assert_eq!(
+        call(addr, "GET", "/", &["Sec-Fetch-Site: cross-site"], b"").status,
+        200
+    );
+    // An A0 page at 300 dpi would be 139 megapixels (under the PNG
+    // writer's own 400): refused before any pixel is drawn.
+    let huge = get(addr, "/api/export?format=png&dpi=300");
+    assert_eq!(huge.status, 422, "{}", huge.text());
+    let error = huge.json();
+    assert_eq!(error["path"], "dpi");
+    assert!(
+        error["error"].as_str().unwrap().contains("at most 40"),
+        "{error}"
+    );
+    studio.stop();
+}
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_in_the_folder_is_refused_and_the_studio_goes_on() {
+    let (studio, dir) = studio(SCENE);
+    let addr = studio.addr();
+    for name in ["pipe.toml", "pipe.svg"] {
+        let made = Command::new("mkfifo")
+            .arg(dir.path().join(name))
+            .status()
+            .unwrap();
+        assert!(made.success());
+    }
+    let file =
+        |what: &str, path: &str| json(addr, "POST", what, &serde_json::json!({ "path": path }));
+    // Twice: once froze one of the server's two threads.
+    for _ in 0..2 {
+        for path in ["pipe.toml", "pipe.svg"] {
+            let opened = file("/api/open", path);
+            assert_eq!(opened.status, 422, "{}", opened.text());
+            assert!(
+                opened.text().contains("not a regular file"),
+                "{}",
+                opened.text()
+            );
+        }
+    }
+    let saved = file("/api/save", "pipe.toml");
+    assert_eq!(saved.status, 422, "{}", saved.text());
+    assert!(
+        saved.text().contains("not a regular file"),
+        "{}",
+        saved.text()
+    );
+    // A description naming it.
+    let naming = "version = 1\n[[layers]]\nname = \"a\"\n[[layers.paths]]\nsvg = \"pipe.svg\"\n";
+    let put = call(addr, "PUT", "/api/scene", &[], naming.as_bytes());
+    assert_eq!(put.status, 422, "{}", put.text());
+    assert!(put.text().contains("not a regular file"), "{}", put.text());
+    assert_eq!(get(addr, "/").status, 200);
+    assert_eq!(get(addr, "/api/svg").status, 200);
+    studio.stop();
+}
+
+#[test]
+fn stroke_points_out_of_range_or_too_many_are_refused_as_they_come() {
+    let (studio, _dir) = studio(SCENE);
+    let addr = studio.addr();
+    let post = |path: &str, body: serde_json::Value| json(addr, "POST", path, &body);
+    let begun = post(
+        "/api/stroke/begin",
+        serde_json::json!({"target": null, "at": [50, 50]}),
+    );
+    assert_eq!(begun.status, 200, "{}", begun.text());
+    let far = post(
+        "/api/stroke/extend",
+        serde_json::json!({"points": [[60, 50], [1e6, 50]]}),
+    );
+    assert_eq!(far.status, 422);
+    assert_eq!(far.json()["path"], "points[1]");
+    assert!(far.text().contains("100000"), "{}", far.text());
+    // 10,001 points a millimetre apart, with the first: 10,002.
+    let many: Vec<[f64; 2]> = (0..10_001)
+        .map(|i| [f64::from(i % 100), 60.0 + f64::from(i / 100)])
+        .collect();
+    let long = post("/api/stroke/extend", serde_json::json!({ "points": many }));
+    assert_eq!(long.status, 422);
+    assert!(
+        long.text().contains("at most 10000 points"),
+        "{}",
+        long.text()
+    );
+    // Neither added anything: the stroke goes on from where it was.
+    let on = post(
+        "/api/stroke/extend",
+        serde_json::json!({"points": [[50, 60], [50, 70]]}),
+    );
+    assert_eq!(on.status, 200, "{}", on.text());
+    let end = post("/api/stroke/end", serde_json::json!({}));
+    assert_eq!(end.status, 200, "{}", end.text());
+    let scene = get(addr, "/api/scene").text();
+    assert!(
+        scene.contains("points = [[50.0, 50.0], [50.0, 60.0], [50.0, 70.0]]"),
+        "{scene}"
+    );
+    studio.stop();
+}
+
+#[test]
+fn a_studio_on_every_address_answers_to_its_loopback_names() {
+    let (studio, _dir) = studio_with(SCENE, "0.0.0.0:0", StudioLimits::default());
+    let port = studio.addr().port();
+    let addr: SocketAddr = format!("127.0.0.1:{port}").parse().unwrap();
+    let status = |host: &str| {
+        raw(
+            addr,
+            format!("GET /api/scene HTTP/1.1\r\nHost: {host}\r\nConnection: close\r\n\r\n")
+                .as_bytes(),
+        )
+        .status
+    };
+    for host in [
+        format!("127.0.0.1:{port}"),
+        format!("localhost:{port}"),
+        format!("0.0.0.0:{port}"),
+    ] {
+        assert_eq!(status(&host), 200, "{host}");
+    }
+    for host in [
+        format!("evil.example:{port}"),
+        format!("127.0.0.1:{}", port.wrapping_add(1)),
+        "127.0.0.1".to_string(),
+    ] {
+        assert_eq!(status(&host), 403, "{host}");
+    }
     studio.stop();
 }

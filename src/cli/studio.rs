@@ -4,8 +4,9 @@
 
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
+use std::time::Duration;
 
-use moyo::studio::{Studio, StudioOptions};
+use moyo::studio::{Studio, StudioLimits, StudioOptions};
 use moyo::templates;
 use moyo::{Format, ValidSpec};
 
@@ -50,6 +51,7 @@ pub(crate) fn studio(args: &StudioArgs) -> Result<(), CliError> {
         folder: PathBuf::from("."),
         text,
         addr: SocketAddr::new(args.host, args.port),
+        limits: limits()?,
     })?;
     eprintln!(
         "moyo studio: open {} (Ctrl-C to stop; files are read and written in {})",
@@ -58,4 +60,26 @@ pub(crate) fn studio(args: &StudioArgs) -> Result<(), CliError> {
     );
     studio.wait()?;
     Ok(())
+}
+
+/// Shortens the header deadline for a test of the command, which must
+/// not wait the default's 10 s for stalled connections to be let go.
+/// Not a setting for users, so not among the flags.
+const HEADER_TIMEOUT_VAR: &str = "MOYO_STUDIO_HEADER_TIMEOUT_MS";
+
+/// The default limits, but for `MOYO_STUDIO_HEADER_TIMEOUT_MS`.
+fn limits() -> Result<StudioLimits, CliError> {
+    let mut limits = StudioLimits::default();
+    if let Some(ms) = std::env::var_os(HEADER_TIMEOUT_VAR) {
+        let ms = ms
+            .to_str()
+            .and_then(|ms| ms.parse::<u64>().ok())
+            .ok_or_else(|| {
+                CliError::Message(format!(
+                    "{HEADER_TIMEOUT_VAR}: give a whole number of milliseconds, got {ms:?}"
+                ))
+            })?;
+        limits.header_timeout = Duration::from_millis(ms);
+    }
+    Ok(limits)
 }

@@ -21,7 +21,12 @@ pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
 }
 
 fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
-    let file = std::fs::File::open(path)?;
+    read_open(std::fs::File::open(path)?, limit)
+}
+
+/// Reads `file`, already open, whole up to `limit` bytes (as
+/// [`read_file`], for a caller that opens it its own way).
+pub(crate) fn read_open(file: std::fs::File, limit: u64) -> std::io::Result<Vec<u8>> {
     let too_large = || {
         std::io::Error::new(
             std::io::ErrorKind::FileTooLarge,
@@ -50,7 +55,13 @@ fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
 /// As [`read_file`], and [`std::io::ErrorKind::InvalidData`] for text that
 /// is not UTF-8.
 pub fn read_text(path: &Path) -> std::io::Result<String> {
-    String::from_utf8(read_file(path)?).map_err(|e| {
+    utf8(read_file(path)?)
+}
+
+/// `bytes` as UTF-8 text, or [`std::io::ErrorKind::InvalidData`] worded
+/// as [`read_text`] words it.
+pub(crate) fn utf8(bytes: Vec<u8>) -> std::io::Result<String> {
+    String::from_utf8(bytes).map_err(|e| {
         std::io::Error::new(
             std::io::ErrorKind::InvalidData,
             format!("not UTF-8 text: {}", e.utf8_error()),

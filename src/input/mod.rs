@@ -11,6 +11,9 @@ mod file;
 mod image;
 mod svg;
 
+// For the studio, which opens a file its own way (regular files only).
 pub use file::{read_file, read_text, MAX_FILE_BYTES};
+#[cfg(feature = "studio")]
+pub(crate) use file::{read_open, utf8};
 pub use image::decode_image;
 pub use svg::{import_svg, ImportOptions, Imported, PenGrouping, MAX_IMPORT_SEGMENTS};

@@ -97,6 +97,9 @@ pub(crate) fn point(field: &str, p: [f64; 2]) -> Result<()> {
     Ok(())
 }
 
+/// The most points a line of points may have.
+pub(crate) const MAX_POINTS: usize = 10_000;
+
 pub(crate) fn points(field: &str, pts: &[[f64; 2]], min: usize) -> Result<()> {
     if pts.len() < min {
         return Err(Error::invalid(
@@ -104,8 +107,11 @@ pub(crate) fn points(field: &str, pts: &[[f64; 2]], min: usize) -> Result<()> {
             format!("needs at least {min} points [x, y], got {}", pts.len()),
         ));
     }
-    if pts.len() > 10_000 {
-        return Err(Error::invalid(field, "at most 10000 points"));
+    if pts.len() > MAX_POINTS {
+        return Err(Error::invalid(
+            field,
+            format!("at most {MAX_POINTS} points"),
+        ));
     }
     for (i, p) in pts.iter().enumerate() {
         point(&format!("{field}[{i}]"), *p)?;

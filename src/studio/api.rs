@@ -1,12 +1,15 @@
-//! The studio's HTTP API and the guard in front of it. Every answer about
-//! a description that does not work is 422 with the error as JSON
+//! The studio's HTTP API and what stands in front of it: the guard
+//! (`Host`, `Origin`, `Sec-Fetch-Site`), the body's size and deadline,
+//! and `X-Content-Type-Options: nosniff` on every answer. Every answer
+//! about a description that does not work is 422 with the error as JSON
 //! (`{"error", "path", "line", "column"}`), worded as the command line
 //! words it; an edit that a newer one replaced is 409.
 
-use std::net::SocketAddr;
+use std::net::{IpAddr, SocketAddr};
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
-use axum::body::Bytes;
+use axum::body::{Body, Bytes};
 use axum::extract::{DefaultBodyLimit, Query, Request, State};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::middleware::{self, Next};
@@ -17,6 +20,7 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 
 use super::edit::Edit;
+use super::folder;
 use super::gesture;
 use super::pen::Stroke;
 use super::session::{Good, Move, Session};
@@ -28,32 +32,29 @@ use crate::spec::field::{booleans, choices, number_at, point_lists, value_at, xy
 /// The most bytes a request may send (a description, a field change).
 pub const MAX_BODY: usize = 4 * 1024 * 1024;
 
+/// The largest PNG the studio exports, in pixels (40 megapixels: an A0
+/// page at 150 dpi); a larger one is refused with 422 before any is
+/// drawn.
+pub const MAX_EXPORT_PIXELS: f64 = 40e6;
+
 /// The page, built in.
 const PAGE: &str = include_str!("page.html");
 
 #[derive(Clone)]
 pub(super) struct App {
     pub(super) session: Arc<Session>,
-    /// `Host` values the studio answers to.
-    hosts: Arc<Vec<String>>,
+    /// The address the studio listens on: the `Host` it answers to.
+    addr: SocketAddr,
     /// The stroke being drawn with the page's pen.
     pub(super) stroke: Arc<Mutex<Option<Stroke>>>,
 }
 
-/// The routes, behind the guard, for the studio listening on `addr`.
-pub(super) fn router(session: Arc<Session>, addr: SocketAddr) -> Router {
-    let port = addr.port();
-    let mut hosts = vec![addr.to_string()];
-    if addr.ip().is_loopback() {
-        hosts.extend([
-            format!("127.0.0.1:{port}"),
-            format!("localhost:{port}"),
-            format!("[::1]:{port}"),
-        ]);
-    }
+/// The routes, behind the guard, for the studio listening on `addr`;
+/// a request's body must come within `body_timeout`.
+pub(super) fn router(session: Arc<Session>, addr: SocketAddr, body_timeout: Duration) -> Router {
     let app = App {
         session,
-        hosts: Arc::new(hosts),
+        addr,
         stroke: Arc::new(Mutex::new(None)),
     };
     Router::new()
@@ -72,17 +73,32 @@ pub(super) fn router(session: Arc<Session>, addr: SocketAddr) -> Router {
         .route("/api/open", post(open))
         .route("/api/export", get(export))
         .merge(gesture::routes())
+        // Past the router's own default (2 MB); `read_body` has already
+        // held the body to this.
         .layer(DefaultBodyLimit::max(MAX_BODY))
+        .layer(middleware::from_fn_with_state(body_timeout, read_body))
         .layer(middleware::from_fn_with_state(app.clone(), guard))
+        .layer(middleware::map_response(nosniff))
         .with_state(app)
 }
 
-/// 403 for a request whose `Host` is not the studio's address, or whose
-/// `Origin` (sent by browsers) is not the studio's own page.
+/// Every answer, refusals and errors included: a browser must take it as
+/// the type it says (an SVG or a description is never run as a script).
+async fn nosniff(mut response: Response) -> Response {
+    response.headers_mut().insert(
+        header::X_CONTENT_TYPE_OPTIONS,
+        HeaderValue::from_static("nosniff"),
+    );
+    response
+}
+
+/// 403 for a request whose `Host` is not the studio's address, whose
+/// `Origin` (sent by browsers) is not the studio's own page, or, but for
+/// the page itself, that a browser says comes from another site.
 async fn guard(State(app): State<App>, request: Request, next: Next) -> Response {
     let headers = request.headers();
     let host = headers.get(header::HOST).and_then(|h| h.to_str().ok());
-    if !host.is_some_and(|h| app.hosts.iter().any(|a| a == h)) {
+    if !host.is_some_and(|h| names_studio(h, app.addr)) {
         return (
             StatusCode::FORBIDDEN,
             "forbidden: not this studio's address",
@@ -92,13 +108,110 @@ async fn guard(State(app): State<App>, request: Request, next: Next) -> Response
     if let Some(origin) = headers.get(header::ORIGIN) {
         let ok = origin.to_str().ok().is_some_and(|o| {
             o.strip_prefix("http://")
-                .is_some_and(|h| app.hosts.iter().any(|a| a == h))
+                .is_some_and(|h| names_studio(h, app.addr))
         });
         if !ok {
             return (StatusCode::FORBIDDEN, "forbidden: not this studio's page").into_response();
         }
     }
+    // A GET from an image or a link on another site carries no `Origin`
+    // but, in today's browsers, `Sec-Fetch-Site`: without this, any page
+    // could have the studio export (or read) the design. `none` is the
+    // designer typing the address; the page itself may be opened from
+    // anywhere, it does nothing until used.
+    if request.uri().path() != "/" {
+        if let Some(site) = headers.get("sec-fetch-site") {
+            if !(site == "same-origin" || site == "none") {
+                return (
+                    StatusCode::FORBIDDEN,
+                    "forbidden: a request from another site",
+                )
+                    .into_response();
+            }
+        }
+    }
     next.run(request).await
+}
+
+/// Whether `host` (a `Host` header, or an `Origin` without its scheme)
+/// names the studio listening on `addr`: its port (80 when none is
+/// written), and its address — any loopback name for a studio on a
+/// loopback address, and any address of the machine, or `localhost`,
+/// for one listening on all of them (`0.0.0.0`, `::`). A name other than
+/// `localhost` never does: a page elsewhere could make it lead here
+/// (DNS rebinding).
+fn names_studio(host: &str, addr: SocketAddr) -> bool {
+    let (name, port) = match host.strip_prefix('[') {
+        // `[::1]:7878`
+        Some(rest) => match rest.split_once(']') {
+            Some((name, port)) => (name, port),
+            None => return false,
+        },
+        None => match host.rsplit_once(':') {
+            Some((name, port)) => (name, port),
+            None => (host, ""),
+        },
+    };
+    let port = match port {
+        "" => 80,
+        port => match port.strip_prefix(':').unwrap_or(port).parse::<u16>() {
+            Ok(port) => port,
+            Err(_) => return false,
+        },
+    };
+    if port != addr.port() {
+        return false;
+    }
+    let listening = addr.ip();
+    if name.eq_ignore_ascii_case("localhost") {
+        return listening.is_loopback() || listening.is_unspecified();
+    }
+    match name.parse::<IpAddr>() {
+        Ok(ip) => {
+            ip == listening
+                || (ip.is_loopback() && listening.is_loopback())
+                // A studio on every address: the one the request came to
+                // is one of the machine's (and only the studio serves
+                // pages at that address and port).
+                || listening.is_unspecified()
+        }
+        Err(_) => false,
+    }
+}
+
+/// Reads the body whole before the route sees it, within `timeout` and
+/// [`MAX_BODY`]: a client that sends its headers and then stalls, or
+/// trickles, is answered 408 rather than holding the connection.
+async fn read_body(State(timeout): State<Duration>, request: Request, next: Next) -> Response {
+    use http_body_util::{BodyExt, LengthLimitError, Limited};
+    let (parts, body) = request.into_parts();
+    let limited = Limited::new(body, MAX_BODY);
+    let bytes = match tokio::time::timeout(timeout, limited.collect()).await {
+        Ok(Ok(collected)) => collected.to_bytes(),
+        Ok(Err(e)) if e.is::<LengthLimitError>() => {
+            return (
+                StatusCode::PAYLOAD_TOO_LARGE,
+                format!("the body is larger than {MAX_BODY} bytes"),
+            )
+                .into_response()
+        }
+        Ok(Err(e)) => {
+            return (
+                StatusCode::BAD_REQUEST,
+                format!("the body could not be read: {e}"),
+            )
+                .into_response()
+        }
+        Err(_) => {
+            return (
+                StatusCode::REQUEST_TIMEOUT,
+                format!("the body did not come within {} s", timeout.as_secs_f64()),
+            )
+                .into_response()
+        }
+    };
+    next.run(Request::from_parts(parts, Body::from(bytes)))
+        .await
 }
 
 async fn page() -> Response {
@@ -455,12 +568,9 @@ struct FileRequest {
 }
 
 /// Writes the description (`.toml`, as written) or the SVG (`.svg`, the
-/// last good render, with its description embedded).
+/// last good render, with its description embedded), off the server's
+/// threads, over a regular file or none.
 async fn save(State(app): State<App>, Json(request): Json<FileRequest>) -> Response {
-    let path = match app.session.folder().resolve(&request.path, "path") {
-        Ok(p) => p,
-        Err(e) => return failure(&e),
-    };
     let bytes = if request.path.ends_with(".toml") {
         app.session.text().into_bytes()
     } else if request.path.ends_with(".svg") {
@@ -474,22 +584,35 @@ async fn save(State(app): State<App>, Json(request): Json<FileRequest>) -> Respo
     } else {
         return failure(&Error::invalid("path", "save a .toml or an .svg file"));
     };
-    match write_atomic(&path, &bytes) {
-        Ok(()) => Json(json!({"saved": request.path})).into_response(),
-        Err(e) => failure(&e),
+    let session = Arc::clone(&app.session);
+    let name = request.path.clone();
+    let written = tokio::task::spawn_blocking(move || {
+        let path = session.folder().resolve(&name, "path")?;
+        folder::check_writable(&path, "path")?;
+        write_atomic(&path, &bytes)
+    })
+    .await;
+    match written {
+        Ok(Ok(())) => Json(json!({"saved": request.path})).into_response(),
+        Ok(Err(e)) => failure(&e),
+        Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
     }
 }
 
 /// Opens a description (`.toml`) or an SVG moyo wrote (its embedded
-/// description) from the folder, as a new edit.
+/// description) from the folder, as a new edit. The file is read off the
+/// server's threads, and only a regular file is (a FIFO would never
+/// end).
 async fn open(State(app): State<App>, Json(request): Json<FileRequest>) -> Response {
-    let read = app
-        .session
-        .folder()
-        .resolve(&request.path, "path")
-        .and_then(|path| crate::input::read_text(&path).map_err(|e| Error::io(&path, e)));
+    let session = Arc::clone(&app.session);
+    let name = request.path.clone();
+    let read = tokio::task::spawn_blocking(move || {
+        let path = session.folder().resolve(&name, "path")?;
+        folder::read_text(&path).map_err(|e| Error::io(&path, e))
+    })
+    .await;
     let text = match read {
-        Ok(text) if request.path.ends_with(".svg") => {
+        Ok(Ok(text)) if request.path.ends_with(".svg") => {
             match crate::scene::embedded_description(&text) {
                 Some(description) => description,
                 None => {
@@ -500,8 +623,9 @@ async fn open(State(app): State<App>, Json(request): Json<FileRequest>) -> Respo
                 }
             }
         }
-        Ok(text) => text,
-        Err(e) => return failure(&e),
+        Ok(Ok(text)) => text,
+        Ok(Err(e)) => return failure(&e),
+        Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
     };
     match apply(&app, text, Move::Edit).await {
         Ok(good) => changed(&app, &good),
@@ -517,6 +641,27 @@ struct ExportQuery {
     dpi: Option<f64>,
 }
 
+/// [`Error::Invalid`] at `dpi` when a PNG of `page` at `dpi` would have
+/// more than [`MAX_EXPORT_PIXELS`]: counted from the page, before any
+/// pixel is drawn.
+fn check_export_size(page: &crate::units::Page, dpi: f64) -> Result<(), Error> {
+    // As the PNG writer rounds each side.
+    let side = |mm: f64| (mm / 25.4 * dpi).round().max(1.0);
+    let (width, height) = (side(page.width), side(page.height));
+    if width * height > MAX_EXPORT_PIXELS {
+        return Err(Error::invalid(
+            "dpi",
+            format!(
+                "a {width}×{height} pixel PNG at {dpi} dpi is {:.0} megapixels; \
+                 the studio exports at most {:.0}: lower the dpi",
+                width * height / 1e6,
+                MAX_EXPORT_PIXELS / 1e6
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The last good design as PNG, G-code or HPGL, through the same
 /// pipeline as the command line.
 async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Response {
@@ -530,6 +675,7 @@ async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Respons
                 if !(10.0..=600.0).contains(&dpi) {
                     return Err(Error::invalid("dpi", format!("must be 10–600, got {dpi}")));
                 }
+                check_export_size(&good.rendered.scene.page, dpi)?;
                 Ok((good.rendered.png(dpi)?, "image/png", "png"))
             }
             "gcode" | "hpgl" => {
@@ -566,5 +712,59 @@ async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Respons
         }
         Ok(Err(e)) => failure(&e),
         Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_studio_answers_to_its_own_names_only() {
+        let loopback: SocketAddr = "127.0.0.1:7878".parse().unwrap();
+        let every: SocketAddr = "0.0.0.0:7878".parse().unwrap();
+        let lan: SocketAddr = "192.168.1.5:7878".parse().unwrap();
+        for host in [
+            "127.0.0.1:7878",
+            "localhost:7878",
+            "LOCALHOST:7878",
+            "[::1]:7878",
+        ] {
+            assert!(names_studio(host, loopback), "{host}");
+            assert!(names_studio(host, every), "{host}");
+        }
+        assert!(names_studio("192.168.1.5:7878", every));
+        assert!(names_studio("192.168.1.5:7878", lan));
+        assert!(!names_studio("localhost:7878", lan));
+        assert!(!names_studio("127.0.0.1:7878", lan));
+        for host in [
+            "evil.example:7878",
+            "127.0.0.1:7879",
+            "127.0.0.1",
+            "[::1]",
+            "[::1:7878",
+            "127.0.0.1:x",
+            "",
+        ] {
+            assert!(!names_studio(host, loopback), "{host}");
+            assert!(!names_studio(host, every), "{host}");
+        }
+        // Port 80 may go unwritten.
+        let eighty: SocketAddr = "127.0.0.1:80".parse().unwrap();
+        assert!(names_studio("localhost", eighty));
+        assert!(names_studio("127.0.0.1:80", eighty));
+    }
+
+    #[test]
+    fn a_png_past_the_cap_is_refused_by_its_page_and_dpi() {
+        let a0 = crate::units::Page::sized(
+            841.0,
+            1189.0,
+            crate::units::Orientation::Portrait,
+            Default::default(),
+        );
+        assert!(check_export_size(&a0, 150.0).is_ok());
+        let e = check_export_size(&a0, 600.0).unwrap_err().to_string();
+        assert!(e.starts_with("dpi: a 19866×28087 pixel PNG"), "{e}");
     }
 }

@@ -1,11 +1,74 @@
 //! The one folder the studio may touch: the files a description names,
 //! what the page saves and what it opens are all paths inside the folder
 //! the studio was started in. A path that leaves it — absolute, with
-//! `..`, or through a link that points outside — is refused.
+//! `..`, or through a link that points outside — is refused. And the
+//! studio reads and writes regular files only: a FIFO, a device or a
+//! socket in the folder would block a read, or never end it.
 
+use std::fs::{File, OpenOptions};
+use std::io::{Error as IoError, ErrorKind};
 use std::path::{Component, Path, PathBuf};
 
 use crate::error::{Error, Result};
+use crate::input::{read_open, utf8, MAX_FILE_BYTES};
+
+/// Reads the regular file at `path` whole, up to
+/// [`crate::input::MAX_FILE_BYTES`]. Blocking: call it off the server's
+/// threads.
+///
+/// # Errors
+/// The I/O error, [`ErrorKind::InvalidInput`] for anything but a regular
+/// file (found so before it is opened when it can be, and checked again
+/// on the open file), or what [`crate::input::read_file`] refuses.
+pub(crate) fn read(path: &Path) -> std::io::Result<Vec<u8>> {
+    // Not opened at all when it is plainly no file (a device's open may
+    // act); the open file is checked again, for what changed between.
+    regular(&std::fs::metadata(path)?)?;
+    let file = open_without_waiting(path)?;
+    regular(&file.metadata()?)?;
+    read_open(file, MAX_FILE_BYTES)
+}
+
+/// [`read`] as UTF-8 text.
+///
+/// # Errors
+/// As [`read`], and [`ErrorKind::InvalidData`] for text that is not UTF-8.
+pub(crate) fn read_text(path: &Path) -> std::io::Result<String> {
+    utf8(read(path)?)
+}
+
+/// Opens `path` for reading without waiting: opening a FIFO blocks until
+/// a writer comes, unless asked not to (`O_NONBLOCK`, which changes
+/// nothing for a regular file).
+#[cfg(unix)]
+fn open_without_waiting(path: &Path) -> std::io::Result<File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+}
+
+/// Opens `path` for reading (no FIFO is opened by a path here).
+#[cfg(not(unix))]
+fn open_without_waiting(path: &Path) -> std::io::Result<File> {
+    OpenOptions::new().read(true).open(path)
+}
+
+fn regular(metadata: &std::fs::Metadata) -> std::io::Result<()> {
+    if metadata.file_type().is_file() {
+        Ok(())
+    } else {
+        Err(not_regular())
+    }
+}
+
+fn not_regular() -> IoError {
+    IoError::new(
+        ErrorKind::InvalidInput,
+        "not a regular file: the studio reads and writes only files",
+    )
+}
 
 /// The folder, made absolute and with its links resolved.
 #[derive(Debug, Clone)]
@@ -68,6 +131,22 @@ impl Folder {
     }
 }
 
+/// Refuses to write over `path` when something other than a regular file
+/// is there (a folder, a FIFO, a device): a write replaces a file, nothing
+/// else.
+///
+/// # Errors
+/// [`Error::Invalid`] at `field` for something that is not a regular file.
+pub(crate) fn check_writable(path: &Path, field: &str) -> Result<()> {
+    match std::fs::metadata(path) {
+        Ok(metadata) if !metadata.file_type().is_file() => Err(Error::invalid(
+            field,
+            format!("{}: {}", path.display(), not_regular()),
+        )),
+        _ => Ok(()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -89,6 +168,35 @@ mod tests {
             std::os::unix::fs::symlink("/tmp", dir.path().join("out")).unwrap();
             let e = folder.resolve("out/x.toml", "path").unwrap_err();
             assert!(e.to_string().contains("through a link"), "{e}");
+        }
+    }
+
+    #[test]
+    fn only_regular_files_are_read_or_written_over() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("a.toml");
+        std::fs::write(&file, "version = 1\n").unwrap();
+        assert_eq!(read_text(&file).unwrap(), "version = 1\n");
+        assert!(check_writable(&file, "path").is_ok());
+        assert!(check_writable(&dir.path().join("new.toml"), "path").is_ok());
+        let e = read(dir.path()).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidInput);
+        assert!(check_writable(dir.path(), "path").is_err());
+        #[cfg(unix)]
+        {
+            // A FIFO with no writer: refused at once, never waited on.
+            let fifo = dir.path().join("pipe.toml");
+            let made = std::process::Command::new("mkfifo")
+                .arg(&fifo)
+                .status()
+                .unwrap();
+            assert!(made.success());
+            let e = read(&fifo).unwrap_err();
+            assert!(e.to_string().contains("not a regular file"), "{e}");
+            assert!(check_writable(&fifo, "path").is_err());
+            // The same when what is checked first is not what is opened.
+            let opened = open_without_waiting(&fifo).unwrap();
+            assert!(regular(&opened.metadata().unwrap()).is_err());
         }
     }
 }

@@ -7,25 +7,78 @@
 //!
 //! The HTTP API the page uses is documented in the README ("The studio").
 //! It is safe by default: it listens on 127.0.0.1, answers 403 to a
-//! request whose `Host` or `Origin` is not the address it serves (so a web
-//! page elsewhere cannot reach it through DNS rebinding), reads and writes
-//! only inside the folder it was started in, and limits what a request
-//! may send.
+//! request whose `Host` or `Origin` is not the address it serves, or that
+//! a browser marks as coming from another site (so a web page elsewhere
+//! cannot reach it, through DNS rebinding or an image or a link), marks
+//! every answer `nosniff`, caps what it exports, reads and writes
+//! only inside the folder it was started in (regular files only, read
+//! and written off the server's threads), and limits what a request may
+//! send and how long a connection may take to send it
+//! ([`StudioLimits`]).
 
 mod api;
 mod edit;
 mod folder;
 mod gesture;
 mod pen;
+mod serve;
 mod session;
 
 use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::Arc;
+use std::time::Duration;
 
 use crate::error::{Error, Result};
 
-pub use api::MAX_BODY;
+pub use api::{MAX_BODY, MAX_EXPORT_PIXELS};
+pub use pen::MAX_STROKE_POINTS;
+
+/// The longest deadline [`StudioLimits`] takes: a day. A longer one is
+/// taken as a day (no deadline past the clock's range).
+const LONGEST: Duration = Duration::from_secs(24 * 60 * 60);
+
+/// How long a connection may take and how many may be open: what keeps
+/// stalled or idle connections from holding the studio.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StudioLimits {
+    /// How long a connection may take to send the head of a request (its
+    /// line and headers), counted from when the studio is ready for it
+    /// (a new connection, or the answer before on one kept open); past
+    /// it the connection is closed. Default 10 s, at most a day.
+    pub header_timeout: Duration,
+    /// How long a request may take to send its body once its head is
+    /// in; past it the answer is 408. Default 30 s, at most a day.
+    pub body_timeout: Duration,
+    /// Most connections open at once; further ones wait in the system's
+    /// queue until one closes. Default 256, at least 1.
+    pub connections: usize,
+}
+
+impl Default for StudioLimits {
+    fn default() -> StudioLimits {
+        StudioLimits {
+            header_timeout: Duration::from_secs(10),
+            body_timeout: Duration::from_secs(30),
+            connections: 256,
+        }
+    }
+}
+
+impl StudioLimits {
+    fn header_timeout(&self) -> Duration {
+        self.header_timeout.min(LONGEST)
+    }
+
+    fn body_timeout(&self) -> Duration {
+        self.body_timeout.min(LONGEST)
+    }
+
+    fn connections(&self) -> usize {
+        self.connections
+            .clamp(1, tokio::sync::Semaphore::MAX_PERMITS)
+    }
+}
 
 /// What a studio starts from.
 #[derive(Debug, Clone)]
@@ -37,6 +90,8 @@ pub struct StudioOptions {
     pub text: String,
     /// Where to listen; 127.0.0.1 on a free port unless told otherwise.
     pub addr: SocketAddr,
+    /// Deadlines and the connection cap.
+    pub limits: StudioLimits,
 }
 
 /// A studio listening for the page (see the module docs).
@@ -44,7 +99,7 @@ pub struct Studio {
     addr: SocketAddr,
     runtime: tokio::runtime::Runtime,
     stop: Option<tokio::sync::oneshot::Sender<()>>,
-    served: Option<tokio::task::JoinHandle<std::io::Result<()>>>,
+    served: Option<tokio::task::JoinHandle<()>>,
 }
 
 impl Studio {
@@ -56,9 +111,10 @@ impl Studio {
     /// [`Error::Io`] when the address cannot be bound or the folder does
     /// not exist.
     pub fn start(options: StudioOptions) -> Result<Studio> {
+        // Timers too: the deadlines, and the pause after a failed accept.
         let runtime = tokio::runtime::Builder::new_multi_thread()
             .worker_threads(2)
-            .enable_io()
+            .enable_all()
             .build()
             .map_err(|e| Error::io("studio", e))?;
         let folder = folder::Folder::new(&options.folder)?;
@@ -72,15 +128,9 @@ impl Studio {
         // The first render, before the page can ask: its error, if any,
         // shows on the page.
         let _ = session.apply(options.text, session::Move::Edit);
-        let router = api::router(session, addr);
+        let router = api::router(session, addr, options.limits.body_timeout());
         let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-        let served = runtime.spawn(async move {
-            axum::serve(listener, router)
-                .with_graceful_shutdown(async {
-                    let _ = stopped.await;
-                })
-                .await
-        });
+        let served = runtime.spawn(serve::serve(listener, router, options.limits, stopped));
         Ok(Studio {
             addr,
             runtime,
@@ -106,7 +156,7 @@ impl Studio {
     pub fn wait(mut self) -> Result<()> {
         match self.served.take() {
             Some(served) => match self.runtime.block_on(served) {
-                Ok(result) => result.map_err(|e| Error::io(self.addr.to_string(), e)),
+                Ok(()) => Ok(()),
                 Err(e) => Err(Error::io(
                     self.addr.to_string(),
                     std::io::Error::other(e.to_string()),

@@ -20,12 +20,18 @@ use crate::family::gesture::{point_list, tenth, Change, Gestures};
 use crate::family::lsystem::gesture::new_sketch;
 use crate::family::lsystem::GrowingSketch;
 use crate::output::write_path_data;
+use crate::spec::validate::{point, MAX_POINTS};
 use crate::spec::LSystemSpec;
 
 /// Points of a stroke closer than this to the last one kept (mm) are
 /// left out: finer than a pen draws, and they would only lengthen the
 /// description.
 pub(crate) const MIN_GAP: f64 = 0.5;
+
+/// The most points a stroke keeps: as many as a line of points in a
+/// description may have, so a stroke that would not be written is
+/// refused as it comes in rather than grown without end.
+pub const MAX_STROKE_POINTS: usize = MAX_POINTS;
 
 /// Decimals of the live drawing's path data.
 const PRECISION: u8 = 2;
@@ -74,8 +80,10 @@ impl Stroke {
     ///
     /// # Errors
     /// [`Error::Invalid`] at `target` when it is not a sketch table of
-    /// the design or not a layer of it.
+    /// the design or not a layer of it, at `at` for a point past
+    /// ±[`crate::units::MAX_COORD`] mm.
     pub(crate) fn begin(good: &Good, target: Target, at: [f64; 2]) -> Result<(Stroke, Growth)> {
+        point("at", at)?;
         let spec = good.spec.spec();
         let (table, layer, field) = match &target {
             Target::Table(field) => {
@@ -125,31 +133,40 @@ impl Stroke {
         Ok((stroke, growth))
     }
 
-    /// Adds `points` (scene mm) to the stroke and grows the sketch.
+    /// Adds `points` (scene mm) to the stroke and grows the sketch. A
+    /// batch with a point out of range, or one too many, adds nothing:
+    /// the stroke is as it was, and the pen can still lift.
     ///
     /// # Errors
-    /// [`Error::Invalid`] for a point that is not finite, or when the
+    /// [`Error::Invalid`] at `points[i]` for a point that is not finite or
+    /// lies past ±[`crate::units::MAX_COORD`] mm, at `points` when the
+    /// stroke would keep more than [`MAX_STROKE_POINTS`], or when the
     /// sketch would grow past the design's segment limit.
     pub(crate) fn extend(&mut self, points: &[[f64; 2]]) -> Result<Growth> {
         let before = self.growing.steps();
-        let mut taken = Vec::new();
-        for &[x, y] in points {
-            if !(x.is_finite() && y.is_finite()) {
-                return Err(Error::invalid(
-                    "points",
-                    "a point of the stroke is not finite",
-                ));
-            }
-            let p = [tenth(x), tenth(y)];
-            let far = self
-                .points
+        let mut kept: Vec<[f64; 2]> = Vec::new();
+        for (i, &p) in points.iter().enumerate() {
+            point(&format!("points[{i}]"), p)?;
+            let p = p.map(tenth);
+            let far = kept
                 .last()
+                .or(self.points.last())
                 .is_none_or(|q| (p[0] - q[0]).hypot(p[1] - q[1]) >= MIN_GAP);
             if far {
-                self.points.push(p);
-                taken.push(DVec2::from_array(p));
+                kept.push(p);
+            }
+            if self.points.len() + kept.len() > MAX_STROKE_POINTS {
+                return Err(Error::invalid(
+                    "points",
+                    format!(
+                        "a stroke has at most {MAX_STROKE_POINTS} points (at least \
+                         {MIN_GAP} mm apart): lift the pen and draw on in a new stroke"
+                    ),
+                ));
             }
         }
+        self.points.extend_from_slice(&kept);
+        let taken: Vec<DVec2> = kept.into_iter().map(DVec2::from_array).collect();
         self.growing.extend(&taken)?;
         let grew = self.growing.steps() != before;
         Ok(Growth {

@@ -194,7 +194,9 @@ impl Session {
     fn render(&self, text: &str, cancel: &Cancel) -> Result<Good> {
         let spec = ValidSpec::parse(text, Format::Toml)?;
         let library = load_motifs_with(&spec, &|name| match self.folder.resolve(name, name) {
-            Ok(path) => match crate::input::read_file(&path) {
+            // Regular files only: a FIFO the description names would hold
+            // the render (and its thread) for ever.
+            Ok(path) => match super::folder::read(&path) {
                 // A template's own files (its images) are built in.
                 Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                     match crate::templates::file(name) {
