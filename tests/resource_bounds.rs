@@ -155,3 +155,45 @@ fn a_scene_past_its_segment_budget_stops_naming_the_limit() {
             "`a.t` would make more than 50 path segments",
         ));
 }
+
+/// 100,000 stroke colours, one pen each: every stage that goes pen by pen
+/// once scanned every layer for every pen (more than 120 s for `stats`);
+/// now they group the layers once. Ten times as many colours would pass
+/// the import's limit of a million elements, so this is the most a file
+/// can ask for.
+#[test]
+fn a_hundred_thousand_colours_are_plotted_pen_by_pen_in_one_pass() {
+    let dir = tempdir();
+    let body: String = (0..100_000u32)
+        .map(|i| {
+            let (x, y) = (f64::from(i % 400) * 0.25, f64::from(i / 400) * 0.4);
+            format!(
+                r##"<path d="M{x} {y}h0.2" stroke="#{:06x}"/>"##,
+                i * 167 % 0x100_0000
+            )
+        })
+        .collect();
+    fs::write(dir.path().join("colours.svg"), svg(&body)).unwrap();
+    moyo(&dir)
+        .args(["stats", "colours.svg", "--json"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("\"paths\": 100000"));
+    moyo(&dir)
+        .args([
+            "plot",
+            "colours.svg",
+            "--merge",
+            "--sort",
+            "-o",
+            "out.gcode",
+        ])
+        .assert()
+        .success();
+    let gcode = fs::read_to_string(dir.path().join("out.gcode")).unwrap();
+    assert_eq!(
+        gcode.matches("M3 S1000").count(),
+        100_000,
+        "every stroke drawn"
+    );
+}

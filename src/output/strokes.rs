@@ -16,8 +16,6 @@
 //!
 //! Writers add what is theirs: units, rounding, pen commands, travel.
 
-use std::collections::BTreeSet;
-
 use kurbo::{PathEl, Point};
 
 use crate::error::{Error, Result};
@@ -79,12 +77,11 @@ pub(super) fn pen_blocks(scene: &Scene, tolerance: f64) -> Vec<PenBlock<'_>> {
     };
     let mut layers = scene.layers_back_to_front();
     layers.retain(|l| l.is_plotted());
-    let pens: BTreeSet<u32> = layers.iter().map(|l| l.pen).collect();
     let page = scene.page_transform();
     let mut blocks = Vec::new();
-    for number in pens {
+    for (number, layers) in Scene::layers_by_pen(layers) {
         let mut paths = Vec::new();
-        for layer in layers.iter().filter(|l| l.pen == number) {
+        for layer in layers {
             layer.content.visit_paths(page, &mut |p, t| {
                 if !p.style.is_drawn() {
                     return;

@@ -53,8 +53,6 @@
 //! Stroke colour and width live on the Inkscape layer; a path carries a
 //! `style` only when it has a fill.
 
-use std::collections::BTreeSet;
-
 use kurbo::{Affine, BezPath, PathEl, Point};
 
 use super::number::{write_number, MAX_PRECISION};
@@ -219,12 +217,10 @@ impl Writer {
             self.out.push_str("</g>\n");
         }
 
-        // BTreeSet: ascending pen numbers, each once.
-        let pens: BTreeSet<u32> = plotted.iter().map(|l| l.pen).collect();
-        for number in pens {
+        for (number, layers) in Scene::layers_by_pen(plotted) {
             let pen = pen_or_fallback(scene, number);
             self.pen_open(&pen);
-            for layer in plotted.iter().filter(|l| l.pen == number) {
+            for layer in layers {
                 self.indent(2);
                 self.out.push_str("<g id=\"");
                 escape_into(&mut self.out, &layer.id);

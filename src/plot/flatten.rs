@@ -55,8 +55,6 @@
 //!
 //! The G-code and HPGL writers and [`super::stats()`] skip or flag them.
 
-use std::collections::BTreeSet;
-
 use kurbo::{Affine, BezPath, PathEl, Point};
 
 use crate::geom::subpath::subpaths;
@@ -81,39 +79,35 @@ pub fn by_pen(scene: &Scene) -> Scene {
             layer
         })
         .collect();
-    // BTreeSet: ascending pen numbers, each once.
-    let pens: BTreeSet<u32> = back_to_front
-        .iter()
-        .filter(|l| l.is_plotted())
-        .map(|l| l.pen)
-        .collect();
-    layers.extend(pens.into_iter().map(|number| {
-        let mut content = Group::new(format!("pen-{number}.paths"));
-        for layer in back_to_front
-            .iter()
-            .filter(|l| l.pen == number && l.is_plotted())
-        {
-            layer.content.visit_paths(page_transform, &mut |p, t| {
-                // A fill without a stroke is preview colour, a mask only
-                // hides: nothing to plot.
-                if !p.style.is_drawn() {
-                    return;
+    let plotted = back_to_front.iter().copied().filter(|l| l.is_plotted());
+    layers.extend(
+        Scene::layers_by_pen(plotted)
+            .into_iter()
+            .map(|(number, of_pen)| {
+                let mut content = Group::new(format!("pen-{number}.paths"));
+                for layer in of_pen {
+                    layer.content.visit_paths(page_transform, &mut |p, t| {
+                        // A fill without a stroke is preview colour, a mask only
+                        // hides: nothing to plot.
+                        if !p.style.is_drawn() {
+                            return;
+                        }
+                        content.children.push(Node::Path(StyledPath {
+                            id: p.id.clone(),
+                            path: transformed(&p.path, t),
+                            style: p.style.clone(),
+                        }));
+                    });
                 }
-                content.children.push(Node::Path(StyledPath {
-                    id: p.id.clone(),
-                    path: transformed(&p.path, t),
-                    style: p.style.clone(),
-                }));
-            });
-        }
-        Layer {
-            id: format!("pen-{number}.layer"),
-            name: plotted_layer_name(number, scene.pen(number).map_or("", |p| &p.name)),
-            pen: number,
-            depth: 0,
-            content,
-        }
-    }));
+                Layer {
+                    id: format!("pen-{number}.layer"),
+                    name: plotted_layer_name(number, scene.pen(number).map_or("", |p| &p.name)),
+                    pen: number,
+                    depth: 0,
+                    content,
+                }
+            }),
+    );
     let mut page = scene.page;
     page.margins = Margins::default();
     Scene {

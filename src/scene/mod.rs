@@ -13,12 +13,14 @@ mod color;
 pub(crate) mod embed;
 mod model;
 pub mod traditional;
+mod unique;
 
 pub use budget::PathBudget;
 pub use codes::LayerCodes;
 pub use color::Color;
 pub use embed::embedded_description;
 pub use model::{Model, ModelPart};
+pub(crate) use unique::UniqueIds;
 
 use kurbo::{Affine, BezPath, Rect, Shape};
 
@@ -275,7 +277,26 @@ impl Scene {
 
     /// The pen with this number.
     pub fn pen(&self, number: u32) -> Option<&Pen> {
-        self.pens.iter().find(|p| p.number == number)
+        // Pens are kept in ascending number, so a lookup is a binary search
+        // (every plot stage asks once per layer: 100,000 pens must not
+        // cost 10¹⁰ comparisons); a list someone left unsorted is still
+        // searched whole.
+        match self.pens.binary_search_by_key(&number, |p| p.number) {
+            Ok(i) => Some(&self.pens[i]),
+            Err(_) => self.pens.iter().find(|p| p.number == number),
+        }
+    }
+
+    /// `layers` grouped by pen: pens in ascending number, each with its
+    /// layers in the order given. One pass, whatever the number of pens.
+    pub(crate) fn layers_by_pen<'a>(
+        layers: impl IntoIterator<Item = &'a Layer>,
+    ) -> std::collections::BTreeMap<u32, Vec<&'a Layer>> {
+        let mut by_pen = std::collections::BTreeMap::<u32, Vec<&'a Layer>>::new();
+        for layer in layers {
+            by_pen.entry(layer.pen).or_default().push(layer);
+        }
+        by_pen
     }
 
     /// Width of the pen with this number, mm; [`Pen::FALLBACK_WIDTH`] when

@@ -10,7 +10,7 @@ use super::scan::LayerSource;
 use super::walk::{Drawn, Walked};
 #[cfg(doc)]
 use crate::scene::LayerCodes;
-use crate::scene::{Color, Group, Layer, Pen, Scene, Style};
+use crate::scene::{Color, Group, Layer, Pen, Scene, Style, UniqueIds};
 use crate::units::Page;
 
 /// Width of a pen none of whose paths is stroked (a fine liner).
@@ -238,23 +238,6 @@ fn most_common<T: Copy, K: std::hash::Hash + Eq>(
         .map(|(_, _, v)| v)
 }
 
-/// Hands out ids unique within the scene: the wanted one, else with
-/// `-2`, `-3`… appended.
-struct Ids(HashSet<String>);
-
-impl Ids {
-    fn unique(&mut self, wanted: &str) -> String {
-        let mut id = wanted.to_string();
-        let mut n = 1;
-        while self.0.contains(&id) {
-            n += 1;
-            id = format!("{wanted}-{n}");
-        }
-        self.0.insert(id.clone());
-        id
-    }
-}
-
 /// Builds the scene. `stacked`: the buckets are in paint order (layers),
 /// so the first is the furthest back; colour buckets all get depth 0.
 pub(super) fn assemble(
@@ -301,7 +284,7 @@ pub(super) fn assemble(
     }
 
     // The writer names its pen layers `pen-N`; keep those free.
-    let mut ids = Ids(numbers.iter().map(|n| format!("pen-{n}")).collect());
+    let mut ids = UniqueIds::reserving(numbers.iter().map(|n| format!("pen-{n}")));
     let layer_ids: Vec<(String, String)> = (1..=buckets.len())
         .map(|k| {
             let id = ids.unique(&format!("layer-{k}"));
