@@ -881,3 +881,73 @@ fn hp2xx_draws_our_hpgl() {
     assert_eq!(hp2xx_figure(&report, "Unexpected event(s):"), 0.0);
     assert_eq!(hp2xx_numbers(&report, "Pens used:"), pens, "{report}");
 }
+
+/// A graph as graphviz draws it: a white page polygon with a transparent
+/// stroke behind three nodes (one a filled box), three edges with
+/// arrowheads and three labels.
+pub(crate) const GRAPHVIZ: &str = include_str!("fixtures/import/graphviz_like.svg");
+
+/// A directory holding `graph.svg`.
+pub(crate) fn with_graph() -> TempDir {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    fs::write(dir.path().join("graph.svg"), GRAPHVIZ).unwrap();
+    dir
+}
+
+/// The bounds, on the page, of what an SVG draws (mm).
+pub(crate) fn drawn_bounds(svg: &str) -> kurbo::Rect {
+    use moyo::input::{import_svg, ImportOptions};
+    let scene = import_svg(svg, &ImportOptions::DEFAULT)
+        .expect("moyo reads the SVG")
+        .scene;
+    scene.bounds().expect("something is drawn")
+}
+
+#[test]
+fn a_graphviz_page_is_neither_plotted_nor_counted() {
+    let dir = with_graph();
+    // Three nodes, three edges and their arrowheads, three labels; no
+    // page border, and no pen for the page's white.
+    let s = stats_json(&dir, "graph.svg");
+    assert_eq!(number(&s, "paths"), 12.0, "{s}");
+    assert_eq!(s["layers"].as_array().unwrap().len(), 1, "{s}");
+    // Less than the border alone would be: 2 × (134 + 188) pt = 227 mm.
+    let ink = number(&s, "pen_down_mm");
+    assert!(ink > 250.0 && ink < 300.0, "{ink}");
+    // The page is 134 × 188 pt; the graph keeps 4 pt (1.41 mm) from its
+    // edges, and so does the plot, with or without hidden-line removal
+    // (the white page lies behind the graph and hides none of it), and
+    // through the pen stage (which counts a glyph's strokes apart).
+    let page = kurbo::Rect::new(0.0, 0.0, 134.0, 188.0).scale_from_origin(25.4 / 72.0);
+    for stages in [&[][..], &["--occlude"], &["--occlude", "--merge", "--sort"]] {
+        moyo(&dir)
+            .args(["plot", "graph.svg", "-o", "out.svg", "--png", "out.png"])
+            .args(stages)
+            .assert()
+            .success();
+        let b = drawn_bounds(&fs::read_to_string(dir.path().join("out.svg")).unwrap());
+        let inset = page.inset(-1.3);
+        assert!(
+            b.x0 > inset.x0 && b.y0 > inset.y0 && b.x1 < inset.x1 && b.y1 < inset.y1,
+            "{stages:?}: {b:?} reaches the page's edge {page:?}"
+        );
+        let out = stats_json(&dir, "out.svg");
+        let drawn = number(&out, "pen_down_mm");
+        assert!(
+            (drawn - ink).abs() < 0.01 * ink,
+            "{stages:?}: {drawn} vs {ink}"
+        );
+        assert_eq!(
+            out["layers"].as_array().unwrap().len(),
+            1,
+            "{stages:?}: {out}"
+        );
+    }
+    // G-code draws with pen 1 alone.
+    moyo(&dir)
+        .args(["plot", "graph.svg", "-o", "out.gcode"])
+        .assert()
+        .success();
+    let g = fs::read_to_string(dir.path().join("out.gcode")).unwrap();
+    assert!(g.contains("; pen 1 ") && !g.contains("; pen 2"), "{g}");
+}
