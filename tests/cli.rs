@@ -843,3 +843,21 @@ fn voronoi_sites_pinned_as_points_draw_the_same_svg() {
     );
     assert!(path_count(&spread) > 50);
 }
+
+#[test]
+fn a_negative_number_is_a_value_to_check_not_an_unknown_option() {
+    for (args, expected) in [
+        (
+            &["-t", "tree-rules", "--seed", "-1"][..],
+            "'-1' for '--seed",
+        ),
+        (&["-t", "tree-rules", "--dpi", "-5"], "'-5' for '--dpi"),
+        (
+            &["-t", "tree-rules", "--precision", "-2"],
+            "'-2' for '--precision",
+        ),
+    ] {
+        let stderr = render_fails(&[], args, &[expected]);
+        assert!(!stderr.contains("unexpected argument"), "{stderr}");
+    }
+}

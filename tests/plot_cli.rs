@@ -951,3 +951,115 @@ fn a_graphviz_page_is_neither_plotted_nor_counted() {
     let g = fs::read_to_string(dir.path().join("out.gcode")).unwrap();
     assert!(g.contains("; pen 1 ") && !g.contains("; pen 2"), "{g}");
 }
+
+/// The stderr of a `moyo` run that fails, with nothing written: the
+/// folder holds what it held before.
+fn fails(dir: &TempDir, args: &[&str]) -> String {
+    let before = crate::cli::entries(dir.path());
+    let out = moyo(dir)
+        .args(args)
+        .assert()
+        .failure()
+        .get_output()
+        .stderr
+        .clone();
+    assert_eq!(crate::cli::entries(dir.path()), before, "{args:?}");
+    let stderr = String::from_utf8_lossy(&out).into_owned();
+    assert!(stderr.starts_with("error: "), "{args:?}: {stderr}");
+    stderr
+}
+
+#[test]
+fn negative_numbers_need_no_equals_sign() {
+    let dir = with_graph();
+    // The same drawing with a space as with `=`.
+    for (flag, value, extra) in [
+        ("--rotate", "-30", &["--format", "svg"][..]),
+        (
+            "--hatch-angle",
+            "-45",
+            &["--hatch", "2", "--format", "svg"][..],
+        ),
+        (
+            "--refill-at",
+            "-15,20",
+            &["--refill", "60", "--format", "gcode"][..],
+        ),
+        (
+            "--device-range",
+            "-100000,100000",
+            &["--format", "hpgl"][..],
+        ),
+    ] {
+        moyo(&dir)
+            .args(["plot", "graph.svg", "-o", "spaced", flag, value])
+            .args(extra)
+            .assert()
+            .success();
+        moyo(&dir)
+            .args(["plot", "graph.svg", "-o", "joined"])
+            .arg(format!("{flag}={value}"))
+            .args(extra)
+            .assert()
+            .success();
+        let read = |name: &str| fs::read(dir.path().join(name)).unwrap();
+        assert_eq!(read("spaced"), read("joined"), "{flag} {value}");
+    }
+    // A negative value out of range is refused by the option's own check,
+    // not taken for an unknown option.
+    for (args, expected) in [
+        (&["--scale", "-2"][..], "scale: must be between"),
+        (&["--speed-down", "-5"], "--speed-down: "),
+        (&["--dpi", "-5", "--png", "x.png"], "-5"),
+    ] {
+        let stderr = fails(
+            &dir,
+            &[&["plot", "graph.svg", "-o", "out.svg"][..], args].concat(),
+        );
+        assert!(
+            stderr.contains(expected) && !stderr.contains("unexpected argument"),
+            "{args:?}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn an_output_extension_that_names_no_format_is_refused() {
+    let dir = with_graph();
+    for (out, expected) in [
+        (
+            "out.txt",
+            "-o out.txt: the extension .txt names no output format",
+        ),
+        ("out", "-o out: no extension to tell the output format by"),
+    ] {
+        let stderr = fails(&dir, &["plot", "graph.svg", "-o", out]);
+        assert!(stderr.contains(expected), "{stderr}");
+        assert!(
+            stderr.contains(".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt or .hgl, or give --format"),
+            "{stderr}"
+        );
+    }
+    // --format says what to write; so does a device.
+    moyo(&dir)
+        .args(["plot", "graph.svg", "-o", "out.txt", "--format", "svg"])
+        .assert()
+        .success();
+    assert!(fs::read_to_string(dir.path().join("out.txt"))
+        .unwrap()
+        .contains("<svg"));
+    moyo(&dir)
+        .args([
+            "plot",
+            "graph.svg",
+            "-o",
+            "out.nc2",
+            "--device",
+            "grbl-servo",
+        ])
+        .assert()
+        .success();
+    assert!(fs::read_to_string(dir.path().join("out.nc2"))
+        .unwrap()
+        .contains("G21"));
+}

@@ -33,6 +33,7 @@ enum Command {
     /// Render a scene description to layered SVG (and optionally PNG).
     ///
     /// With no SCENE and no --template, renders the built-in default design.
+    #[command(allow_negative_numbers = true)]
     Render(RenderArgs),
     /// List the built-in templates with a one-line description each.
     Templates,
@@ -41,20 +42,24 @@ enum Command {
     /// Stages run in a fixed order: transform, hatch, occlude, then per pen
     /// dedupe, merge, debris, simplify, sort, multipass. Only the stages
     /// asked for run.
+    #[command(allow_negative_numbers = true)]
     Plot(Box<plot::PlotArgs>),
     /// Path count, pen-down and pen-up length and plot time of an SVG.
+    #[command(allow_negative_numbers = true)]
     Stats(plot::StatsArgs),
     /// Fill the closed shapes of any SVG with a Voronoi-family pattern.
     ///
     /// Shapes inside shapes are holes; open strokes fill nothing. The
     /// pattern goes on a layer and pen of its own; the input's layers and
     /// pens are kept as they are.
+    #[command(allow_negative_numbers = true)]
     Fill(fill::FillArgs),
     /// Draw an L-system: rules from the command line, fitted to the page;
     /// or the Sketching L-System grown along the first path of an SVG.
     ///
     /// The turtle starts heading up the page; `+` turns left. The same
     /// table in a scene description (`[[layers.lsystem]]`) draws the same.
+    #[command(allow_negative_numbers = true)]
     Lsystem(lsystem::LSystemArgs),
     /// Open the live design page in the browser: edit a description and
     /// see the pattern change as you work.
@@ -62,6 +67,7 @@ enum Command {
     /// Serves on 127.0.0.1 and prints the address; reads and writes files
     /// only in the current folder.
     #[cfg(feature = "studio")]
+    #[command(allow_negative_numbers = true)]
     Studio(studio::StudioArgs),
     /// List the built-in machine profiles, or print one (TOML, with its
     /// comments) to start your own from: `moyo devices grbl-z > my.toml`,

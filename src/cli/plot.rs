@@ -37,8 +37,9 @@ pub(crate) struct PlotArgs {
     /// Output file.
     #[arg(short, long)]
     output: PathBuf,
-    /// Output format; by default from the output's extension (.gcode, .nc,
-    /// .ngc → gcode; .hpgl, .plt → hpgl; otherwise svg).
+    /// Output format; by default the device's (--device, or a moyo SVG's
+    /// own), else from the output's extension (.svg; .gcode, .nc, .ngc, .g
+    /// → gcode; .hpgl, .plt, .hgl → hpgl). Another extension needs it.
     #[arg(long, value_enum)]
     format: Option<OutputFormat>,
 
@@ -371,7 +372,7 @@ impl PlotArgs {
             (Some(OutputFormat::Hpgl), None) => {
                 PlotFormat::Hpgl(self.hpgl_options(HpglOptions::DEFAULT))
             }
-            (None, None) => PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision)),
+            (None, None) => return Err(CliError::Message(self.unknown_extension())),
         };
         let preview = self.png.as_ref().map(|_| {
             Preview::DEFAULT
@@ -401,6 +402,24 @@ impl PlotArgs {
                 _ => None,
             }
         })
+    }
+
+    /// Why an output that names no format by its extension is refused
+    /// (when neither --format nor a device chooses one).
+    fn unknown_extension(&self) -> String {
+        let output = self.output.display();
+        let allowed = ".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt or .hgl";
+        match self.output.extension() {
+            Some(ext) => format!(
+                "-o {output}: the extension .{} names no output format; \
+                 use {allowed}, or give --format",
+                ext.to_string_lossy()
+            ),
+            None => format!(
+                "-o {output}: no extension to tell the output format by; \
+                 use {allowed}, or give --format"
+            ),
+        }
     }
 
     fn runs(&self, runs: RunOptions) -> RunOptions {
