@@ -126,6 +126,57 @@ struct RenderArgs {
     obj: Option<PathBuf>,
 }
 
+/// A file named on the command line: how the command line names it (the
+/// option, or what the argument is) and the path.
+pub(crate) type Named<'a> = (&'a str, &'a Path);
+
+/// What a path stands for when comparing files: the file itself when it
+/// exists (links and `..` resolved), else the resolved folder and the
+/// name, else the path as written.
+pub(crate) fn identity(path: &Path) -> PathBuf {
+    if let Ok(real) = std::fs::canonicalize(path) {
+        return real;
+    }
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    match (path.file_name(), std::fs::canonicalize(dir)) {
+        (Some(name), Ok(dir)) => dir.join(name),
+        _ => path.to_path_buf(),
+    }
+}
+
+/// Refuses, before anything is computed, outputs that would destroy what
+/// the command reads or what it writes: an output that is also one of the
+/// `inputs`, two `outputs` that are one file, and an output whose folder
+/// is missing.
+pub(crate) fn check_outputs(inputs: &[Named<'_>], outputs: &[Named<'_>]) -> Result<(), CliError> {
+    let inputs: Vec<(Named<'_>, PathBuf)> = inputs.iter().map(|&n| (n, identity(n.1))).collect();
+    let mut seen: Vec<(Named<'_>, PathBuf)> = Vec::new();
+    for &(flag, path) in outputs {
+        moyo::output::check_output_folder(path)?;
+        let id = identity(path);
+        if let Some(((what, input), _)) = inputs.iter().find(|(_, i)| *i == id) {
+            return Err(CliError::Message(format!(
+                "{flag} {}: the same file as {what} {}, which writing would replace; \
+                 choose another output",
+                path.display(),
+                input.display()
+            )));
+        }
+        if let Some(((other, first), _)) = seen.iter().find(|(_, o)| *o == id) {
+            return Err(CliError::Message(format!(
+                "{flag} {}: the same file as {other} {}; give each output a file of its own",
+                path.display(),
+                first.display()
+            )));
+        }
+        seen.push(((flag, path), id));
+    }
+    Ok(())
+}
+
 /// Rejects a bad `--dpi` while parsing, whether or not `--png` is given.
 pub(crate) fn parse_dpi(s: &str) -> Result<f64, String> {
     let dpi: f64 = s.parse().map_err(|e| format!("{e}"))?;
@@ -225,6 +276,32 @@ enum Files {
 
 fn render(args: &RenderArgs) -> Result<(), CliError> {
     let (spec, files) = load(args)?;
+    // The files the description reads (motifs, paths, images, meshes)
+    // are inputs too.
+    let read: Vec<PathBuf> = match &files {
+        Files::Dir(base) => {
+            let named = project::user_files(&spec);
+            named
+                .motifs
+                .iter()
+                .chain(&named.paths)
+                .chain(&named.images)
+                .chain(&named.meshes)
+                .map(|name| base.join(name))
+                .collect()
+        }
+        Files::Template(_) => Vec::new(),
+    };
+    let mut inputs: Vec<Named<'_>> = Vec::new();
+    inputs.extend(args.scene.as_deref().map(|p| ("the scene", p)));
+    inputs.extend(args.from.as_deref().map(|p| ("--from", p)));
+    inputs.extend(read.iter().map(|p| ("the scene's file", p.as_path())));
+    let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
+    outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
+    outputs.extend(args.preview_svg.as_deref().map(|p| ("--preview-svg", p)));
+    outputs.extend(args.dump.as_deref().map(|p| ("--dump", p)));
+    outputs.extend(args.obj.as_deref().map(|p| ("--obj", p)));
+    check_outputs(&inputs, &outputs)?;
     // The overrides go through the same validation as the file.
     let spec = spec
         .edit(|s| {

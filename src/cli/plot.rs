@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 
-use super::{stdout_error, warn_outside_page, CliError};
+use super::{check_outputs, stdout_error, warn_outside_page, CliError, Named};
 use moyo::input::{ImportOptions, Imported};
 use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
 use moyo::output::gcode::{GcodeOptions, Origin};
@@ -554,6 +554,18 @@ fn parse_range(s: &str) -> Result<[i32; 2], String> {
 
 /// `moyo plot`.
 pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
+    let mut inputs: Vec<Named<'_>> = vec![("the input", &args.input)];
+    // A profile file is read too (a built-in name is no file).
+    inputs.extend(
+        args.device
+            .as_deref()
+            .filter(|arg| BuiltIn::get(arg).is_none())
+            .map(|arg| ("--device", Path::new(arg))),
+    );
+    let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
+    outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
+    outputs.extend(args.preview_svg.as_deref().map(|p| ("--preview-svg", p)));
+    check_outputs(&inputs, &outputs)?;
     let speeds = args.speeds.speeds()?;
     let device = match &args.device {
         Some(arg) => Some(device_arg(arg)?),
