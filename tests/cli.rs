@@ -703,7 +703,8 @@ fn output_into_a_missing_directory_fails_cleanly() {
         .arg(&target)
         .assert()
         .failure()
-        .stderr(predicate::str::contains("out.svg"));
+        // The folder is named, not the output's temporary file.
+        .stderr(predicate::eq("error: no-such-dir: no such folder\n"));
     assert!(entries(dir.path()).is_empty());
 }
 
@@ -842,4 +843,22 @@ fn voronoi_sites_pinned_as_points_draw_the_same_svg() {
         "the pinned sites draw another window"
     );
     assert!(path_count(&spread) > 50);
+}
+
+#[test]
+fn a_negative_number_is_a_value_to_check_not_an_unknown_option() {
+    for (args, expected) in [
+        (
+            &["-t", "tree-rules", "--seed", "-1"][..],
+            "'-1' for '--seed",
+        ),
+        (&["-t", "tree-rules", "--dpi", "-5"], "'-5' for '--dpi"),
+        (
+            &["-t", "tree-rules", "--precision", "-2"],
+            "'-2' for '--precision",
+        ),
+    ] {
+        let stderr = render_fails(&[], args, &[expected]);
+        assert!(!stderr.contains("unexpected argument"), "{stderr}");
+    }
 }

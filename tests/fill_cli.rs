@@ -271,3 +271,64 @@ fn a_filled_outline_is_ready_for_the_pen() {
         );
     }
 }
+
+#[test]
+fn a_graphviz_graph_is_filled_in_its_shapes_not_over_its_page() {
+    let dir = crate::plot_cli::with_graph();
+    let out = moyo(&dir)
+        .args([
+            "fill",
+            "graph.svg",
+            "-o",
+            "filled.svg",
+            "--pattern",
+            "stipple",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stderr
+        .clone();
+    let stderr = String::from_utf8_lossy(&out);
+    let pen: u32 = stderr
+        .split("on new pen ")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{stderr}"));
+    // The closed shapes, in pt on the page: the two ellipses, the box and
+    // the three arrowheads (the page itself is paint, not a shape).
+    let shapes = [
+        [40.0, 4.0, 94.0, 40.0],
+        [4.0, 76.0, 58.0, 112.0],
+        [76.0, 148.0, 130.0, 184.0],
+        [39.3, 66.56, 46.99, 76.85],
+        [96.16, 137.28, 102.93, 147.91],
+        [68.83, 137.33, 78.7, 146.67],
+    ]
+    .map(|[x0, y0, x1, y1]| {
+        // A dot reaches its radius (0.3 mm) past its site.
+        kurbo::Rect::new(x0, y0, x1, y1)
+            .scale_from_origin(25.4 / 72.0)
+            .inflate(0.5, 0.5)
+    });
+    let svg = read(&dir, "filled.svg");
+    let scene = moyo::input::import_svg(&svg, &moyo::input::ImportOptions::DEFAULT)
+        .unwrap()
+        .scene;
+    let mut dots = 0;
+    for layer in scene.layers.iter().filter(|l| l.pen == pen) {
+        layer
+            .content
+            .visit_paths(scene.page_transform(), &mut |p, t| {
+                let b = kurbo::Shape::bounding_box(&(t * p.path.clone()));
+                assert!(
+                    shapes.iter().any(|s| s.union(b) == *s),
+                    "{} at {b:?} is outside every shape",
+                    p.id
+                );
+                dots += 1;
+            });
+    }
+    assert!(dots >= 10, "{dots} dots: {stderr}");
+}

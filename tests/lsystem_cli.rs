@@ -158,6 +158,16 @@ fn bad_rules_name_the_option_and_the_column_and_write_nothing() {
             "--rule (rules[0]): column 4",
         ),
         (vec!["--axiom", "F", "--angle", "400"], "--angle"),
+        // A negative number is a value (refused by its range), not an
+        // option clap does not know.
+        (
+            vec!["--axiom", "F", "--angle", "-90"],
+            "--angle: must be between 0 and 360, got -90",
+        ),
+        (
+            vec!["--axiom", "F", "--width", "-1", "--style", "outline"],
+            "--width",
+        ),
         (
             vec!["--axiom", "F", "--rule", "F=FFFFFFFFFF", "-n", "12"],
             "--iterations: iteration 8 would make 100000000 modules",

@@ -885,3 +885,185 @@ fn hp2xx_draws_our_hpgl() {
     assert_eq!(hp2xx_figure(&report, "Unexpected event(s):"), 0.0);
     assert_eq!(hp2xx_numbers(&report, "Pens used:"), pens, "{report}");
 }
+
+/// A graph as graphviz draws it: a white page polygon with a transparent
+/// stroke behind three nodes (one a filled box), three edges with
+/// arrowheads and three labels.
+pub(crate) const GRAPHVIZ: &str = include_str!("fixtures/import/graphviz_like.svg");
+
+/// A directory holding `graph.svg`.
+pub(crate) fn with_graph() -> TempDir {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    fs::write(dir.path().join("graph.svg"), GRAPHVIZ).unwrap();
+    dir
+}
+
+/// The bounds, on the page, of what an SVG draws (mm).
+pub(crate) fn drawn_bounds(svg: &str) -> kurbo::Rect {
+    use moyo::input::{import_svg, ImportOptions};
+    let scene = import_svg(svg, &ImportOptions::DEFAULT)
+        .expect("moyo reads the SVG")
+        .scene;
+    scene.bounds().expect("something is drawn")
+}
+
+#[test]
+fn a_graphviz_page_is_neither_plotted_nor_counted() {
+    let dir = with_graph();
+    // Three nodes, three edges and their arrowheads, three labels; no
+    // page border, and no pen for the page's white.
+    let s = stats_json(&dir, "graph.svg");
+    assert_eq!(number(&s, "paths"), 12.0, "{s}");
+    assert_eq!(s["layers"].as_array().unwrap().len(), 1, "{s}");
+    // Less than the border alone would be: 2 × (134 + 188) pt = 227 mm.
+    let ink = number(&s, "pen_down_mm");
+    assert!(ink > 250.0 && ink < 300.0, "{ink}");
+    // The page is 134 × 188 pt; the graph keeps 4 pt (1.41 mm) from its
+    // edges, and so does the plot, with or without hidden-line removal
+    // (the white page lies behind the graph and hides none of it), and
+    // through the pen stage (which counts a glyph's strokes apart).
+    let page = kurbo::Rect::new(0.0, 0.0, 134.0, 188.0).scale_from_origin(25.4 / 72.0);
+    for stages in [&[][..], &["--occlude"], &["--occlude", "--merge", "--sort"]] {
+        moyo(&dir)
+            .args(["plot", "graph.svg", "-o", "out.svg", "--png", "out.png"])
+            .args(stages)
+            .assert()
+            .success();
+        let b = drawn_bounds(&fs::read_to_string(dir.path().join("out.svg")).unwrap());
+        let inset = page.inset(-1.3);
+        assert!(
+            b.x0 > inset.x0 && b.y0 > inset.y0 && b.x1 < inset.x1 && b.y1 < inset.y1,
+            "{stages:?}: {b:?} reaches the page's edge {page:?}"
+        );
+        let out = stats_json(&dir, "out.svg");
+        let drawn = number(&out, "pen_down_mm");
+        assert!(
+            (drawn - ink).abs() < 0.01 * ink,
+            "{stages:?}: {drawn} vs {ink}"
+        );
+        assert_eq!(
+            out["layers"].as_array().unwrap().len(),
+            1,
+            "{stages:?}: {out}"
+        );
+    }
+    // G-code draws with pen 1 alone.
+    moyo(&dir)
+        .args(["plot", "graph.svg", "-o", "out.gcode"])
+        .assert()
+        .success();
+    let g = fs::read_to_string(dir.path().join("out.gcode")).unwrap();
+    assert!(g.contains("; pen 1 ") && !g.contains("; pen 2"), "{g}");
+}
+
+/// The stderr of a `moyo` run that fails, with nothing written: the
+/// folder holds what it held before.
+fn fails(dir: &TempDir, args: &[&str]) -> String {
+    let before = crate::cli::entries(dir.path());
+    let out = moyo(dir)
+        .args(args)
+        .assert()
+        .failure()
+        .get_output()
+        .stderr
+        .clone();
+    assert_eq!(crate::cli::entries(dir.path()), before, "{args:?}");
+    let stderr = String::from_utf8_lossy(&out).into_owned();
+    assert!(stderr.starts_with("error: "), "{args:?}: {stderr}");
+    stderr
+}
+
+#[test]
+fn negative_numbers_need_no_equals_sign() {
+    let dir = with_graph();
+    // The same drawing with a space as with `=`.
+    for (flag, value, extra) in [
+        ("--rotate", "-30", &["--format", "svg"][..]),
+        (
+            "--hatch-angle",
+            "-45",
+            &["--hatch", "2", "--format", "svg"][..],
+        ),
+        (
+            "--refill-at",
+            "-15,20",
+            &["--refill", "60", "--format", "gcode"][..],
+        ),
+        (
+            "--device-range",
+            "-100000,100000",
+            &["--format", "hpgl"][..],
+        ),
+    ] {
+        moyo(&dir)
+            .args(["plot", "graph.svg", "-o", "spaced", flag, value])
+            .args(extra)
+            .assert()
+            .success();
+        moyo(&dir)
+            .args(["plot", "graph.svg", "-o", "joined"])
+            .arg(format!("{flag}={value}"))
+            .args(extra)
+            .assert()
+            .success();
+        let read = |name: &str| fs::read(dir.path().join(name)).unwrap();
+        assert_eq!(read("spaced"), read("joined"), "{flag} {value}");
+    }
+    // A negative value out of range is refused by the option's own check,
+    // not taken for an unknown option.
+    for (args, expected) in [
+        (&["--scale", "-2"][..], "scale: must be between"),
+        (&["--speed-down", "-5"], "--speed-down: "),
+        (&["--dpi", "-5", "--png", "x.png"], "-5"),
+    ] {
+        let stderr = fails(
+            &dir,
+            &[&["plot", "graph.svg", "-o", "out.svg"][..], args].concat(),
+        );
+        assert!(
+            stderr.contains(expected) && !stderr.contains("unexpected argument"),
+            "{args:?}: {stderr}"
+        );
+    }
+}
+
+#[test]
+fn an_output_extension_that_names_no_format_is_refused() {
+    let dir = with_graph();
+    for (out, expected) in [
+        (
+            "out.txt",
+            "-o out.txt: the extension .txt names no output format",
+        ),
+        ("out", "-o out: no extension to tell the output format by"),
+    ] {
+        let stderr = fails(&dir, &["plot", "graph.svg", "-o", out]);
+        assert!(stderr.contains(expected), "{stderr}");
+        assert!(
+            stderr.contains(".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt or .hgl, or give --format"),
+            "{stderr}"
+        );
+    }
+    // --format says what to write; so does a device.
+    moyo(&dir)
+        .args(["plot", "graph.svg", "-o", "out.txt", "--format", "svg"])
+        .assert()
+        .success();
+    assert!(fs::read_to_string(dir.path().join("out.txt"))
+        .unwrap()
+        .contains("<svg"));
+    moyo(&dir)
+        .args([
+            "plot",
+            "graph.svg",
+            "-o",
+            "out.nc2",
+            "--device",
+            "grbl-servo",
+        ])
+        .assert()
+        .success();
+    assert!(fs::read_to_string(dir.path().join("out.nc2"))
+        .unwrap()
+        .contains("G21"));
+}

@@ -1,8 +1,10 @@
-//! Writes are safe: an output may replace its own input, a place that
+//! Writes are safe: an output is never one of the command's inputs nor
+//! another of its outputs, and its folder is there (each refused before
+//! anything is computed, naming the files or the folder); a place that
 //! cannot be written fails with a message naming it and leaves nothing
-//! behind, and two runs writing one file at once leave one whole file,
-//! never a mix (every output goes to a temporary file that is renamed
-//! over the target: `moyo::output::write_atomic`).
+//! behind; and two runs writing one file at once leave one whole file,
+//! never a mix (every output goes to a temporary file that is renamed over
+//! the target: `moyo::output::write_atomic`).
 
 use std::fs;
 use std::os::unix::fs::PermissionsExt as _;
@@ -13,32 +15,199 @@ use predicates::prelude::*;
 
 use crate::cli::{entries, moyo, tempdir};
 
-#[test]
-fn plot_can_write_over_its_own_input() {
+/// A folder with a design (`a.toml`, rendered as `a.svg`), a drawing to
+/// plot and fill (`in.svg`), an image (`photo.png`) and a stroke
+/// (`stroke.svg`).
+fn with_inputs() -> tempfile::TempDir {
     let dir = tempdir();
     moyo(&dir)
-        .args(["render", "-t", "tree-rules", "-o", "a.svg"])
+        .args(["new", "tree-rules", "-o", "a.toml"])
         .assert()
         .success();
-    fs::copy(dir.path().join("a.svg"), dir.path().join("copy.svg")).unwrap();
     moyo(&dir)
-        .args([
-            "plot",
-            "copy.svg",
+        .args(["render", "a.toml", "-o", "a.svg"])
+        .assert()
+        .success();
+    let square = r#"<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="40mm" viewBox="0 0 40 40"><rect x="5" y="5" width="30" height="30" stroke="black" fill="none"/></svg>"#;
+    fs::write(dir.path().join("in.svg"), square).unwrap();
+    fs::write(dir.path().join("stroke.svg"), square).unwrap();
+    let png = moyo::output::render_png(square, 10.0).unwrap();
+    fs::write(dir.path().join("photo.png"), png).unwrap();
+    dir
+}
+
+#[test]
+fn an_output_that_is_an_input_or_another_output_is_refused() {
+    let dir = with_inputs();
+    fs::create_dir(dir.path().join("sub")).unwrap();
+    let lsystem = ["lsystem", "--axiom", "F", "--angle", "90"];
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["render", "a.toml", "-o", "a.toml"],
+            "-o a.toml: the same file as the scene a.toml, which writing would replace",
+        ),
+        (
+            vec!["render", "--from", "a.svg", "-o", "./a.svg"],
+            "-o ./a.svg: the same file as --from a.svg",
+        ),
+        (
+            vec!["render", "a.toml", "-o", "b.svg", "--png", "b.svg"],
+            "--png b.svg: the same file as -o b.svg; give each output a file of its own",
+        ),
+        (
+            vec![
+                "render",
+                "a.toml",
+                "-o",
+                "b.svg",
+                "--preview-svg",
+                "sub/../b.svg",
+            ],
+            "--preview-svg sub/../b.svg: the same file as -o b.svg",
+        ),
+        (
+            vec![
+                "render", "a.toml", "-o", "b.svg", "--dump", "d", "--obj", "d",
+            ],
+            "--obj d: the same file as --dump d",
+        ),
+        (
+            vec!["plot", "in.svg", "-o", "in.svg"],
+            "-o in.svg: the same file as the input in.svg",
+        ),
+        (
+            vec![
+                "plot",
+                "in.svg",
+                "-o",
+                "out.svg",
+                "--preview-svg",
+                "out.svg",
+            ],
+            "--preview-svg out.svg: the same file as -o out.svg",
+        ),
+        (
+            vec!["plot", "in.svg", "-o", "p.gcode", "--png", "p.gcode"],
+            "--png p.gcode: the same file as -o p.gcode",
+        ),
+        (
+            vec!["fill", "in.svg", "-o", "in.svg"],
+            "-o in.svg: the same file as the input in.svg",
+        ),
+        (
+            vec![
+                "fill",
+                "in.svg",
+                "-o",
+                "f.svg",
+                "--image",
+                "photo.png",
+                "--png",
+                "photo.png",
+            ],
+            "--png photo.png: the same file as --image photo.png",
+        ),
+        (
+            vec!["fill", "in.svg", "-o", "f.svg", "--png", "f.svg"],
+            "--png f.svg: the same file as -o f.svg",
+        ),
+        (
+            vec!["lsystem", "--stroke", "stroke.svg", "-o", "stroke.svg"],
+            "-o stroke.svg: the same file as --stroke stroke.svg",
+        ),
+        (
+            [&lsystem[..], &["-o", "l.svg", "--png", "l.svg"]].concat(),
+            "--png l.svg: the same file as -o l.svg",
+        ),
+        (
+            [&lsystem[..], &["-o", "sub/growth.svg", "--frames", "sub"]].concat(),
+            "-o sub/growth.svg: --frames sub writes a file of that name there",
+        ),
+        (
+            [
+                &lsystem[..],
+                &[
+                    "-o",
+                    "l.svg",
+                    "--png",
+                    "./sub/frame-003.png",
+                    "--frames",
+                    "sub",
+                ],
+            ]
+            .concat(),
+            "--png ./sub/frame-003.png: --frames sub writes a file of that name there",
+        ),
+    ];
+    let before = entries(dir.path());
+    let a_toml = fs::read(dir.path().join("a.toml")).unwrap();
+    let a_svg = fs::read(dir.path().join("a.svg")).unwrap();
+    for (args, expected) in cases {
+        let out = moyo(&dir)
+            .args(&args)
+            .assert()
+            .failure()
+            .get_output()
+            .stderr
+            .clone();
+        let stderr = String::from_utf8_lossy(&out);
+        assert!(
+            stderr.starts_with(&format!("error: {expected}")),
+            "{args:?}: {stderr}"
+        );
+        assert_eq!(entries(dir.path()), before, "{args:?}");
+        assert!(entries(&dir.path().join("sub")).is_empty(), "{args:?}");
+    }
+    assert_eq!(fs::read(dir.path().join("a.toml")).unwrap(), a_toml);
+    assert_eq!(fs::read(dir.path().join("a.svg")).unwrap(), a_svg);
+    // Outputs of their own are fine, the same names in another folder too.
+    moyo(&dir)
+        .args(["plot", "in.svg", "-o", "sub/in.svg", "--png", "sub/in.png"])
+        .assert()
+        .success();
+}
+
+#[test]
+fn a_missing_folder_is_named_before_anything_is_computed() {
+    let dir = with_inputs();
+    let lsystem = ["lsystem", "--axiom", "F", "--angle", "90"];
+    for args in [
+        vec!["render", "a.toml", "-o", "nodir/out.svg"],
+        vec![
+            "render",
+            "a.toml",
             "-o",
-            "expected.svg",
-            "--merge",
-            "--sort",
-        ])
-        .assert()
-        .success();
+            "out.svg",
+            "--png",
+            "nodir/out.png",
+        ],
+        vec!["plot", "in.svg", "-o", "nodir/out.svg"],
+        vec![
+            "plot",
+            "in.svg",
+            "-o",
+            "out.svg",
+            "--preview-svg",
+            "nodir/p.svg",
+        ],
+        vec!["fill", "in.svg", "-o", "nodir/out.svg"],
+        [&lsystem[..], &["-o", "nodir/out.svg"]].concat(),
+        vec!["new", "tree-rules", "-o", "nodir/out.toml"],
+    ] {
+        let before = entries(dir.path());
+        moyo(&dir)
+            .args(&args)
+            .assert()
+            .failure()
+            .stderr(predicate::eq("error: nodir: no such folder\n"));
+        assert_eq!(entries(dir.path()), before, "{args:?}");
+    }
+    // A file where a folder should be.
     moyo(&dir)
-        .args(["plot", "a.svg", "-o", "a.svg", "--merge", "--sort"])
+        .args(["plot", "in.svg", "-o", "in.svg/out.svg"])
         .assert()
-        .success();
-    let read = |name: &str| fs::read_to_string(dir.path().join(name)).unwrap();
-    assert_eq!(read("a.svg"), read("expected.svg"));
-    assert_eq!(entries(dir.path()).len(), 3, "{:?}", entries(dir.path()));
+        .failure()
+        .stderr(predicate::eq("error: in.svg: not a folder\n"));
 }
 
 /// A directory this process cannot write in: one without write

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 
 use super::plot::load_svg;
-use super::{warn_outside_page, CliError};
+use super::{check_outputs, warn_outside_page, CliError, Named};
 use moyo::input::ImportOptions;
 use moyo::output::write_atomic;
 use moyo::project::{self, FillJob, FillPattern};
@@ -160,6 +160,11 @@ fn on_the_command_line(e: moyo::Error, input: &Path) -> CliError {
 
 /// `moyo fill`.
 pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
+    let mut inputs: Vec<Named<'_>> = vec![("the input", &args.input)];
+    inputs.extend(args.image.as_deref().map(|p| ("--image", p)));
+    let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
+    outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
+    check_outputs(&inputs, &outputs)?;
     let imported = load_svg(&args.input, &ImportOptions::DEFAULT)?;
     let job = args.job()?;
     // Everything is computed before anything is written.

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 
-use super::CliError;
+use super::{check_outputs, identity, CliError, Named};
 use moyo::output::write_atomic;
 use moyo::project::{self, Rendered};
 use moyo::spec::{
@@ -253,8 +253,44 @@ fn render(spec: &ValidSpec, base: &Path) -> Result<Rendered, CliError> {
         .map_err(|e| CliError::Message(on_the_command_line(e)))
 }
 
+/// Whether `--frames dir` writes a file at `path`: its `growth.svg`, or
+/// a frame (`frame-000.svg`, `frame-000.png`, …).
+fn frames_write(dir: &Path, path: &Path) -> bool {
+    let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+        return false;
+    };
+    let frame = name
+        .strip_prefix("frame-")
+        .and_then(|rest| rest.strip_suffix(".svg").or(rest.strip_suffix(".png")))
+        .is_some_and(|k| k.len() >= 3 && k.bytes().all(|b| b.is_ascii_digit()));
+    let folder = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    (frame || name == "growth.svg") && identity(folder) == identity(dir)
+}
+
 /// `moyo lsystem`.
 pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
+    let inputs: Vec<Named<'_>> = args
+        .stroke
+        .iter()
+        .map(|p| ("--stroke", p.as_path()))
+        .collect();
+    let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
+    outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
+    check_outputs(&inputs, &outputs)?;
+    if let Some(dir) = &args.frames {
+        let named = inputs.iter().chain(&outputs);
+        if let Some((flag, path)) = named.into_iter().find(|(_, p)| frames_write(dir, p)) {
+            return Err(CliError::Message(format!(
+                "{flag} {}: --frames {} writes a file of that name there; \
+                 choose another name or folder",
+                path.display(),
+                dir.display()
+            )));
+        }
+    }
     let spec = args.scene()?;
     let base = args
         .stroke

@@ -33,6 +33,7 @@ enum Command {
     /// Render a scene description to layered SVG (and optionally PNG).
     ///
     /// With no SCENE and no --template, renders the built-in default design.
+    #[command(allow_negative_numbers = true)]
     Render(RenderArgs),
     /// List the built-in templates with a one-line description each.
     Templates,
@@ -41,20 +42,24 @@ enum Command {
     /// Stages run in a fixed order: transform, hatch, occlude, then per pen
     /// dedupe, merge, debris, simplify, sort, multipass. Only the stages
     /// asked for run.
+    #[command(allow_negative_numbers = true)]
     Plot(Box<plot::PlotArgs>),
     /// Path count, pen-down and pen-up length and plot time of an SVG.
+    #[command(allow_negative_numbers = true)]
     Stats(plot::StatsArgs),
     /// Fill the closed shapes of any SVG with a Voronoi-family pattern.
     ///
     /// Shapes inside shapes are holes; open strokes fill nothing. The
     /// pattern goes on a layer and pen of its own; the input's layers and
     /// pens are kept as they are.
+    #[command(allow_negative_numbers = true)]
     Fill(fill::FillArgs),
     /// Draw an L-system: rules from the command line, fitted to the page;
     /// or the Sketching L-System grown along the first path of an SVG.
     ///
     /// The turtle starts heading up the page; `+` turns left. The same
     /// table in a scene description (`[[layers.lsystem]]`) draws the same.
+    #[command(allow_negative_numbers = true)]
     Lsystem(lsystem::LSystemArgs),
     /// Open the live design page in the browser: edit a description and
     /// see the pattern change as you work.
@@ -62,6 +67,7 @@ enum Command {
     /// Serves on 127.0.0.1 and prints the address; reads and writes files
     /// only in the current folder.
     #[cfg(feature = "studio")]
+    #[command(allow_negative_numbers = true)]
     Studio(studio::StudioArgs),
     /// List the built-in machine profiles, or print one (TOML, with its
     /// comments) to start your own from: `moyo devices grbl-z > my.toml`,
@@ -118,6 +124,57 @@ struct RenderArgs {
     /// OBJ, in millimetres, y up.
     #[arg(long, value_name = "OBJ")]
     obj: Option<PathBuf>,
+}
+
+/// A file named on the command line: how the command line names it (the
+/// option, or what the argument is) and the path.
+pub(crate) type Named<'a> = (&'a str, &'a Path);
+
+/// What a path stands for when comparing files: the file itself when it
+/// exists (links and `..` resolved), else the resolved folder and the
+/// name, else the path as written.
+pub(crate) fn identity(path: &Path) -> PathBuf {
+    if let Ok(real) = std::fs::canonicalize(path) {
+        return real;
+    }
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    match (path.file_name(), std::fs::canonicalize(dir)) {
+        (Some(name), Ok(dir)) => dir.join(name),
+        _ => path.to_path_buf(),
+    }
+}
+
+/// Refuses, before anything is computed, outputs that would destroy what
+/// the command reads or what it writes: an output that is also one of the
+/// `inputs`, two `outputs` that are one file, and an output whose folder
+/// is missing.
+pub(crate) fn check_outputs(inputs: &[Named<'_>], outputs: &[Named<'_>]) -> Result<(), CliError> {
+    let inputs: Vec<(Named<'_>, PathBuf)> = inputs.iter().map(|&n| (n, identity(n.1))).collect();
+    let mut seen: Vec<(Named<'_>, PathBuf)> = Vec::new();
+    for &(flag, path) in outputs {
+        moyo::output::check_output_folder(path)?;
+        let id = identity(path);
+        if let Some(((what, input), _)) = inputs.iter().find(|(_, i)| *i == id) {
+            return Err(CliError::Message(format!(
+                "{flag} {}: the same file as {what} {}, which writing would replace; \
+                 choose another output",
+                path.display(),
+                input.display()
+            )));
+        }
+        if let Some(((other, first), _)) = seen.iter().find(|(_, o)| *o == id) {
+            return Err(CliError::Message(format!(
+                "{flag} {}: the same file as {other} {}; give each output a file of its own",
+                path.display(),
+                first.display()
+            )));
+        }
+        seen.push(((flag, path), id));
+    }
+    Ok(())
 }
 
 /// Rejects a bad `--dpi` while parsing, whether or not `--png` is given.
@@ -219,6 +276,32 @@ enum Files {
 
 fn render(args: &RenderArgs) -> Result<(), CliError> {
     let (spec, files) = load(args)?;
+    // The files the description reads (motifs, paths, images, meshes)
+    // are inputs too.
+    let read: Vec<PathBuf> = match &files {
+        Files::Dir(base) => {
+            let named = project::user_files(&spec);
+            named
+                .motifs
+                .iter()
+                .chain(&named.paths)
+                .chain(&named.images)
+                .chain(&named.meshes)
+                .map(|name| base.join(name))
+                .collect()
+        }
+        Files::Template(_) => Vec::new(),
+    };
+    let mut inputs: Vec<Named<'_>> = Vec::new();
+    inputs.extend(args.scene.as_deref().map(|p| ("the scene", p)));
+    inputs.extend(args.from.as_deref().map(|p| ("--from", p)));
+    inputs.extend(read.iter().map(|p| ("the scene's file", p.as_path())));
+    let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
+    outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
+    outputs.extend(args.preview_svg.as_deref().map(|p| ("--preview-svg", p)));
+    outputs.extend(args.dump.as_deref().map(|p| ("--dump", p)));
+    outputs.extend(args.obj.as_deref().map(|p| ("--obj", p)));
+    check_outputs(&inputs, &outputs)?;
     // The overrides go through the same validation as the file.
     let spec = spec
         .edit(|s| {

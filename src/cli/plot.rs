@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 
-use super::{stdout_error, warn_outside_page, CliError};
+use super::{check_outputs, stdout_error, warn_outside_page, CliError, Named};
 use moyo::input::{ImportOptions, Imported};
 use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
 use moyo::output::gcode::{GcodeOptions, Origin};
@@ -37,8 +37,9 @@ pub(crate) struct PlotArgs {
     /// Output file.
     #[arg(short, long)]
     output: PathBuf,
-    /// Output format; by default from the output's extension (.gcode, .nc,
-    /// .ngc → gcode; .hpgl, .plt → hpgl; otherwise svg).
+    /// Output format; by default the device's (--device, or a moyo SVG's
+    /// own), else from the output's extension (.svg; .gcode, .nc, .ngc, .g
+    /// → gcode; .hpgl, .plt, .hgl → hpgl). Another extension needs it.
     #[arg(long, value_enum)]
     format: Option<OutputFormat>,
 
@@ -371,7 +372,7 @@ impl PlotArgs {
             (Some(OutputFormat::Hpgl), None) => {
                 PlotFormat::Hpgl(self.hpgl_options(HpglOptions::DEFAULT))
             }
-            (None, None) => PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision)),
+            (None, None) => return Err(CliError::Message(self.unknown_extension())),
         };
         let preview = self.png.as_ref().map(|_| {
             Preview::DEFAULT
@@ -401,6 +402,24 @@ impl PlotArgs {
                 _ => None,
             }
         })
+    }
+
+    /// Why an output that names no format by its extension is refused
+    /// (when neither --format nor a device chooses one).
+    fn unknown_extension(&self) -> String {
+        let output = self.output.display();
+        let allowed = ".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt or .hgl";
+        match self.output.extension() {
+            Some(ext) => format!(
+                "-o {output}: the extension .{} names no output format; \
+                 use {allowed}, or give --format",
+                ext.to_string_lossy()
+            ),
+            None => format!(
+                "-o {output}: no extension to tell the output format by; \
+                 use {allowed}, or give --format"
+            ),
+        }
     }
 
     fn runs(&self, runs: RunOptions) -> RunOptions {
@@ -535,6 +554,18 @@ fn parse_range(s: &str) -> Result<[i32; 2], String> {
 
 /// `moyo plot`.
 pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
+    let mut inputs: Vec<Named<'_>> = vec![("the input", &args.input)];
+    // A profile file is read too (a built-in name is no file).
+    inputs.extend(
+        args.device
+            .as_deref()
+            .filter(|arg| BuiltIn::get(arg).is_none())
+            .map(|arg| ("--device", Path::new(arg))),
+    );
+    let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
+    outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
+    outputs.extend(args.preview_svg.as_deref().map(|p| ("--preview-svg", p)));
+    check_outputs(&inputs, &outputs)?;
     let speeds = args.speeds.speeds()?;
     let device = match &args.device {
         Some(arg) => Some(device_arg(arg)?),

@@ -17,7 +17,8 @@
 //! - [`to_obj`]: the 3D models beside a drawing (a vine and its supports)
 //!   as Wavefront OBJ;
 //! - [`animated_svg`]: frames of a growth in one looping SVG, to watch;
-//! - [`write_atomic`]: puts any of these on disk without half-written files;
+//! - [`write_atomic`]: puts any of these on disk without half-written files
+//!   ([`check_output_folder`]: whether the folder is there, asked first);
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
 pub mod device;
@@ -37,7 +38,7 @@ mod svg;
 mod template;
 
 pub use animate::{animated_svg, FRAME_SECONDS};
-pub use atomic::write_atomic;
+pub use atomic::{check_output_folder, write_atomic};
 pub use dump::path_dump;
 pub use number::{grouped, write_number};
 pub use obj::to_obj;

@@ -441,7 +441,10 @@ fn hatch_direction(polygons: &[Vec<Point>], angle_deg: f64, spacing: f64) -> Res
 /// is white (paper: nothing to draw), hatch lines for the area it enclosed
 /// (non-zero rule, like an SVG fill), [`OUTLINE_CLEARANCE`] widths of the
 /// layer's pen inside the outline, are added right after it in the same
-/// group, with ids `<id>.hatch-<k>`, drawn by the same pen. A path whose
+/// group, with ids `<id>.hatch-<k>`, drawn by the same pen. A
+/// [fill-only](Style::fill_only) path (paint whose outline no pen draws)
+/// is hatched to its edge and becomes a [mask](Style::mask): it still
+/// hides what lies behind it, and is drawn no more than before. A path whose
 /// [`Style::hatch`] gives its own spacing is hatched at that spacing (the
 /// other options as given). Spacing, inset and angle are measured on the
 /// page, whatever the group transforms. Paths that enclose no area only
@@ -526,6 +529,17 @@ fn hatch_group(
                     continue;
                 };
                 p.style.hatch = None;
+                // Paint that no pen outlines (an imported shape with an
+                // invisible stroke) has no outline to keep clear of; its
+                // colour becomes the lines, and what is left of it only
+                // hides what lies behind it, as the paint did.
+                let clearance = if p.style.fill_only {
+                    p.style.fill_only = false;
+                    p.style.mask = true;
+                    0.0
+                } else {
+                    clearance
+                };
                 let options = options.with_inset(options.inset + clearance);
                 let lines = if fill == WHITE {
                     Vec::new()
@@ -784,6 +798,52 @@ mod tests {
         assert!(ids.contains(&"white".to_string()) && ids.contains(&"plain".to_string()));
         assert!(!ids.iter().any(|i| i.starts_with("white.hatch")));
         assert!(run(&mut scene, &HatchOptions::DEFAULT.with_spacing(0.0)).is_err());
+    }
+
+    #[test]
+    fn paint_no_pen_outlines_is_hatched_to_its_edge_and_still_hides() {
+        let mut g = Group::new("g");
+        g.push_path(
+            "paint",
+            Rect::new(0.0, 0.0, 10.0, 10.0).to_path(0.0),
+            Style {
+                fill: Some(Color::BLACK),
+                fill_only: true,
+                ..Style::default()
+            },
+        );
+        let mut scene = Scene::one_pen(
+            Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
+            g,
+        );
+        let o = HatchOptions::DEFAULT
+            .with_angle_deg(0.0)
+            .with_spacing(1.0)
+            .with_inset(0.5);
+        run(&mut scene, &o).unwrap();
+        let mut found = Vec::new();
+        scene.visit_paths(|_, p, t| {
+            let page = t * p.path.clone();
+            let s = page.segments().next().unwrap();
+            found.push((p.id.clone(), p.style.clone(), (s.end() - s.start()).hypot()));
+        });
+        // No outline is drawn to keep clear of: the lines stop at the
+        // inset alone, 9 mm long.
+        assert!(found.len() >= 2, "{found:?}");
+        for (id, style, length) in &found[1..] {
+            assert!(id.starts_with("paint.hatch-") && style.is_drawn(), "{id}");
+            assert!((length - 9.0).abs() < 1e-6, "{id}: {length}");
+        }
+        // The paint is now a mask: nothing to draw, an area that hides.
+        let (id, style, _) = &found[0];
+        assert_eq!(id, "paint");
+        assert_eq!(
+            *style,
+            Style {
+                mask: true,
+                ..Style::default()
+            }
+        );
     }
 
     #[test]

@@ -316,17 +316,28 @@ fn push_fills(scene: &mut Scene, fills: Vec<StyledPath>) {
 
 /// Moves the colour of every filled path a pen draws to a fill-only copy
 /// (id plus [`FILL_SUFFIX`]) in [`FILLS_LAYER_NAME`], in paint order, after
-/// the fills hidden-line removal put there: a pen draws outlines only, and
+/// the fills hidden-line removal put there, and every fill-only path of a
+/// plotted layer (paint with an invisible stroke, from an imported SVG)
+/// there as it is: a pen draws outlines only, and
 /// once the plot stages reorder the paths of a pen a fill painted in place
 /// would cover strokes drawn before it in the new order. Fills behind every
 /// stroke look as fills in place do wherever hidden lines were removed.
 pub fn fills_behind(scene: &mut Scene) {
     fn walk(group: &mut Group, to_layer: Affine, fills: &mut Vec<StyledPath>) {
         let to_layer = to_layer * group.transform;
-        for child in &mut group.children {
+        for child in std::mem::take(&mut group.children) {
             match child {
-                Node::Group(g) => walk(g, to_layer, fills),
-                Node::Path(p) => {
+                Node::Group(mut g) => {
+                    walk(&mut g, to_layer, fills);
+                    group.children.push(Node::Group(g));
+                }
+                // Paint that no pen draws (an imported shape with an
+                // invisible stroke) goes as it is.
+                Node::Path(p) if p.style.fill_only => fills.push(StyledPath {
+                    path: to_layer * p.path,
+                    ..p
+                }),
+                Node::Path(mut p) => {
                     if let (Some(color), true) = (p.style.fill, p.style.is_drawn()) {
                         fills.push(StyledPath {
                             id: format!("{}{FILL_SUFFIX}", p.id),
@@ -339,6 +350,7 @@ pub fn fills_behind(scene: &mut Scene) {
                         });
                         p.style.fill = None;
                     }
+                    group.children.push(Node::Path(p));
                 }
             }
         }
@@ -637,9 +649,14 @@ fn apply(
                         };
                         fills.push((f.paint, path));
                     }
-                    p.path = path;
-                    p.style.fill = None;
-                    kept.push(Node::Path(p));
+                    // Paint that no pen draws (an imported shape with an
+                    // invisible stroke) has no line to keep: its colour
+                    // went to `fills`.
+                    if !p.style.fill_only {
+                        p.path = path;
+                        p.style.fill = None;
+                        kept.push(Node::Path(p));
+                    }
                 }
                 Outcome::Remove => {}
             },
@@ -1079,6 +1096,59 @@ mod tests {
         assert_eq!(path_by_id(&s, "cut").unwrap().style.fill, None);
         assert_eq!(path_by_id(&s, "whole").unwrap().style.fill, red);
         assert_eq!(path_by_id(&s, "front").unwrap().style.fill, red);
+    }
+
+    #[test]
+    fn paint_no_pen_draws_hides_and_leaves_no_line_when_cut() {
+        // Imported paint (a fill whose stroke is invisible): behind a
+        // square, in front of a line.
+        let paint = Style {
+            fill: Some(Color::rgb(200, 0, 0)),
+            fill_only: true,
+            ..Style::default()
+        };
+        let mut g = Group::new("g");
+        g.push_path(
+            "line",
+            Line::new((-5.0, 5.0), (25.0, 5.0)).to_path(0.1),
+            Style::default(),
+        );
+        g.push_path("paint", square(0.0, 0.0, 10.0, 10.0), paint.clone());
+        g.push_path("front", square(5.0, 5.0, 15.0, 15.0), Style::default());
+        let mut s = scene(vec![layer("l", 0, g)]);
+        let o = OccludeOptions {
+            preview_fills: true,
+            ..OccludeOptions::DEFAULT
+        };
+        run(&mut s, &o).unwrap();
+        // The paint hid the line: 5 mm before it, 10 mm after the square.
+        let line = path_by_id(&s, "line").unwrap();
+        assert!((path_length(&line.path) - 15.0).abs() < 1e-6);
+        // Cut by the square, it is colour for the preview alone: no line
+        // pieces of it stay where a pen would draw them.
+        assert!(path_by_id(&s, "paint").is_none());
+        let fill = path_by_id(&s, &format!("paint{FILL_SUFFIX}")).unwrap();
+        assert!(fill.style.fill_only && fill.style.fill == paint.fill);
+
+        // Whole, it moves to the preview fills as it is.
+        let mut g = Group::new("g");
+        g.push_path("paint", square(0.0, 0.0, 10.0, 10.0), paint.clone());
+        g.push_path("drawn", square(20.0, 0.0, 30.0, 10.0), Style::default());
+        let mut s = scene(vec![layer("l", 0, g)]);
+        fills_behind(&mut s);
+        let ids: Vec<Vec<String>> = s
+            .layers
+            .iter()
+            .map(|l| {
+                let mut ids = Vec::new();
+                l.content
+                    .visit_paths(Affine::IDENTITY, &mut |p, _| ids.push(p.id.clone()));
+                ids
+            })
+            .collect();
+        assert_eq!(ids, [vec!["drawn"], vec!["paint"]]);
+        assert_eq!(s.layers[1].name, FILLS_LAYER_NAME);
+        assert_eq!(path_by_id(&s, "paint").unwrap().style, paint);
     }
 
     #[test]

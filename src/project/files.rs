@@ -145,15 +145,34 @@ fn unusable(name: &str, message: String, cause: Cause) -> Error {
     }
 }
 
-/// The paths of the SVG file `name` (shown as `shown`), in its mm.
+/// The paths of the SVG file `name` (shown as `shown`), in its mm: the
+/// lines it draws, not paint that no pen draws (a filled shape whose
+/// stroke is transparent, such as a white page behind the drawing).
 fn svg_paths(name: &str, shown: &str, bytes: &[u8]) -> Result<Vec<BezPath>> {
     let text = std::str::from_utf8(bytes)
         .map_err(|e| unusable(name, format!("{shown} is not UTF-8 text"), e.into()))?;
     let imported = import_svg(text, &ImportOptions::DEFAULT)
         .map_err(|e| unusable(name, shown.to_string(), e.into()))?;
     let mut paths: Vec<BezPath> = Vec::new();
-    imported
-        .scene
-        .visit_paths(|_, p, t| paths.push(t * p.path.clone()));
+    imported.scene.visit_paths(|_, p, t| {
+        if p.style.is_drawn() {
+            paths.push(t * p.path.clone());
+        }
+    });
     Ok(paths)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_paths_of_a_file_are_the_lines_it_draws() {
+        // A white page whose stroke is transparent behind a line: a motif,
+        // a paths table or a sketch's stroke gets the line alone.
+        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="20mm" height="20mm" viewBox="0 0 20 20">
+            <rect width="20" height="20" fill="white" stroke="transparent"/>
+            <path d="M2 2 L18 18" stroke="black"/></svg>"#;
+        let paths = super::svg_paths("a.svg", "a.svg", svg.as_bytes()).unwrap();
+        assert_eq!(paths.len(), 1);
+        assert_eq!(paths[0].elements().len(), 2);
+    }
 }

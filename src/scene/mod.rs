@@ -57,8 +57,11 @@ pub struct Style {
     pub hatch: Option<f64>,
     /// Only the fill is painted, no stroke: the preview colour of what
     /// stays visible of a filled shape that hidden-line removal cut
-    /// ([`crate::plot::occlude`]). A pen has nothing to draw here, so the
-    /// plot outputs (per-pen stages, G-code, HPGL, stats) leave it out.
+    /// ([`crate::plot::occlude`]), or an imported shape whose stroke the
+    /// SVG makes invisible ([`crate::input::import_svg`]). A pen has
+    /// nothing to draw here, so the plot outputs (per-pen stages, G-code,
+    /// HPGL, stats) leave it out; the area still hides what lies behind
+    /// it in hidden-line removal.
     pub fill_only: bool,
     /// Never drawn, by a pen or in the preview: the area the path encloses
     /// (non-zero) only hides what lies behind it in hidden-line removal

@@ -51,9 +51,38 @@
 //!     plotted with it, and everything inside a `%` layer is not plotted.
 //!   - A hidden layer (`display:none`) is skipped with a warning, `%` or
 //!     not.
-//! - **Paint.** A filled path keeps its fill colour in [`Style::fill`](crate::scene::Style::fill) (the
-//!   region that hatching and occlusion work on); the stroke is implied by
-//!   the pen. Paths with neither fill nor stroke are dropped.
+//! - **What cannot be seen is not imported**, and each kind is counted in
+//!   one warning:
+//!   - `display: none` (as an attribute or in `style`) on an element or a
+//!     group: the element with all it holds, counted once. A hidden
+//!     top-level layer has a warning of its own (above); content only
+//!     drawn by reference (`defs`, `symbol`, clip paths, masks, markers,
+//!     patterns) is not counted.
+//!   - `visibility: hidden` (or `collapse`): the path, unless it makes
+//!     itself `visible` again inside a hidden group.
+//!   - Invisible paint: a stroke or a fill is invisible when its colour is
+//!     fully transparent (`transparent`, `rgba(…, 0)`, `#rrggbb00`, a
+//!     gradient all of whose stops have `stop-opacity` 0), its own
+//!     `stroke-opacity` or `fill-opacity` is 0, or the element or a group
+//!     around it has `opacity` 0. A path whose stroke and fill are both
+//!     invisible is skipped. Only zero counts: white is a colour (a white
+//!     pen on dark paper is real), and a faint stroke is drawn.
+//!   - Paths with neither fill nor stroke.
+//! - **Paint.** A visible fill is kept in
+//!   [`Style::fill`](crate::scene::Style::fill): the region that `moyo
+//!   fill`, hatching and occlusion work on. An invisible fill is no
+//!   region: a stroked path with a transparent fill is its line alone.
+//!   The stroke is implied by the pen, which draws every path with a
+//!   visible stroke, and every filled path without any stroke (a plotter
+//!   draws a filled shape as its outline). A filled path whose stroke is
+//!   there but invisible (`stroke="transparent"`: the white page that
+//!   graphviz puts behind a graph) is paint alone
+//!   ([`Style::fill_only`](crate::scene::Style::fill_only)): the preview
+//!   shows it and it hides what lies behind it, but no pen draws its
+//!   outline and `moyo fill` does not fill it. Grouping by colour gives
+//!   such paint no pen of its own: it goes with the first pen, whose layer
+//!   is the back one (a white page is no pen to load, nor may it cover the
+//!   drawing in the preview).
 //! - **Text** (`text`, `tspan`) is drawn in single strokes, in moyo's
 //!   built-in Hershey font ([`crate::text`]), in place of the fonts the
 //!   document names (one warning says so): at its `x` and `y` on the
@@ -97,7 +126,9 @@
 //! downstream, so an `evenodd` fill is redrawn as the normalised contours of
 //! its area (the same lines; holes wound against their outline). Layer
 //! visibility set by a CSS stylesheet (rather than `style`/`display` on the
-//! layer) hides the layer without the "hidden" wording in its warning.
+//! layer) hides the layer without the "hidden" wording in its warning, and
+//! an element a stylesheet hides with `display: none` is left out without
+//! being counted (the count reads the raw XML, usvg the stylesheet).
 //!
 //! # The steps, one file each
 //!
@@ -105,13 +136,14 @@
 //!    the root element, Inkscape layers (given ids where they lack one, so
 //!    that usvg's groups can be matched to them), text (laid out by
 //!    `text`, each text element replaced by a stand-in path that usvg
-//!    places and paints) and images — and, through `numbers`, a check of
+//!    places and paints), images and what `display: none` hides — and,
+//!    through `numbers`, a check of
 //!    every number that becomes geometry (svgtypes parses them as usvg
 //!    will).
 //! 2. usvg builds its tree; `page` takes the page size from it, exact in
 //!    `f64` where the source allows.
 //! 3. `walk`: usvg's tree to paths in page millimetres, each with its
-//!    layer, paint and id; a text's stand-in becomes its glyphs.
+//!    layer, visible paint and id; a text's stand-in becomes its glyphs.
 //! 4. `pens`: paths to pens (by layer or by colour), then the scene.
 
 mod numbers;
@@ -193,8 +225,9 @@ pub struct Imported {
     /// The drawing, in millimetres, with flat layers and zero margins.
     pub scene: Scene,
     /// One sentence per kind of content that was skipped or approximated
-    /// (text, images, unpainted paths, clipping, hidden layers…), in a
-    /// fixed order. Empty when the import is exact.
+    /// (text, images, hidden or invisible content, unpainted paths,
+    /// clipping, hidden layers…), in a fixed order. Empty when the import
+    /// is exact.
     pub warnings: Vec<String>,
 }
 
@@ -289,8 +322,20 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
         "images",
         "raster images cannot be plotted",
     );
+    plural(
+        source.display_none,
+        "element",
+        "elements",
+        "hidden by `display:none`",
+    );
     plural(walked.unpainted, "path", "paths", "no fill and no stroke");
-    plural(walked.invisible, "path", "paths", "hidden by `visibility`");
+    plural(walked.hidden, "path", "paths", "hidden by `visibility`");
+    plural(
+        walked.transparent,
+        "path",
+        "paths",
+        "invisible (transparent or zero opacity)",
+    );
     if walked.effects > 0 {
         let n = walked.effects;
         let groups = if n == 1 { "group" } else { "groups" };

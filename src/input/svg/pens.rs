@@ -183,20 +183,34 @@ fn split_label(label: &str) -> (Option<u32>, String) {
 
 /// One bucket per colour (stroke, else fill), pens numbered in order of
 /// first appearance; the paths of each documentation layer (`%` label)
-/// stay apart, in a bucket of their own after the colours.
+/// stay apart, in a bucket of their own after the colours. Paint that no
+/// pen draws ([`Drawn::paint_only`]) takes no pen of its own: it goes,
+/// in paint order, with the first pen, whose layer the writer puts behind
+/// the other pens' (the white page behind a graphviz graph is no pen to
+/// load, and must not cover the graph in the preview).
 pub(super) fn by_color(drawn: &[Drawn], layers: &[LayerSource]) -> Vec<Bucket> {
+    let plotted = |d: &Drawn| d.layer.is_none_or(|i| layers[i].plotted);
+    let color_of = |d: &Drawn| d.stroke.map(|(c, _)| c).or(d.fill);
+    let first_pen = drawn
+        .iter()
+        .filter(|d| !d.paint_only && plotted(d))
+        .find_map(color_of);
     let mut buckets: Vec<Bucket> = Vec::new();
     let mut index: HashMap<u32, usize> = HashMap::new();
     // Documentation layer (index into `layers`) → its paths.
     let mut unplotted: BTreeMap<usize, Vec<usize>> = Default::default();
     for (k, d) in drawn.iter().enumerate() {
-        let Some(color) = d.stroke.map(|(c, _)| c).or(d.fill) else {
+        let Some(own) = color_of(d) else {
             continue;
         };
         if let Some(i) = d.layer.filter(|&i| !layers[i].plotted) {
             unplotted.entry(i).or_default().push(k);
             continue;
         }
+        let color = match first_pen {
+            Some(first) if d.paint_only => first,
+            _ => own,
+        };
         let i = *index.entry(color_key(color)).or_insert_with(|| {
             buckets.push(Bucket {
                 pen: buckets.len() as u32 + 1,
@@ -263,8 +277,12 @@ pub(super) fn assemble(
                 .flat_map(|b| b.members.iter().map(|&k| &drawn[k]))
         };
         let strokes = || members().filter_map(|d| d.stroke);
+        // Paint no pen draws says nothing of the pen's colour, unless the
+        // pen has nothing else.
+        let fills = |paint: bool| members().filter(move |d| paint || !d.paint_only);
         let color = most_common(strokes().map(|(c, _)| c), color_key)
-            .or_else(|| most_common(members().filter_map(|d| d.fill), color_key))
+            .or_else(|| most_common(fills(false).filter_map(|d| d.fill), color_key))
+            .or_else(|| most_common(fills(true).filter_map(|d| d.fill), color_key))
             .unwrap_or(Color::BLACK);
         let width =
             most_common(strokes().map(|(_, w)| w), f64::to_bits).unwrap_or(DEFAULT_PEN_WIDTH);
@@ -313,6 +331,7 @@ pub(super) fn assemble(
                     Style {
                         // Glyphs are lines: their fill chose the pen.
                         fill: d.fill.filter(|_| !d.glyphs),
+                        fill_only: d.paint_only,
                         ..Style::default()
                     },
                 );

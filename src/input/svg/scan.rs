@@ -3,7 +3,8 @@
 //! layers (with their labels and visibility, and an id for each so that
 //! usvg's groups can be matched to them), lays out text (`text`, which
 //! puts a stand-in for each text element in the source handed to usvg),
-//! counts images, and has every number that becomes geometry checked
+//! counts images and the elements `display: none` hides (usvg drops them
+//! without a word), and has every number that becomes geometry checked
 //! (`numbers`).
 
 use std::collections::HashMap;
@@ -11,7 +12,7 @@ use std::collections::HashMap;
 use resvg::usvg::roxmltree;
 
 use super::numbers::check_numbers;
-use super::text::Texts;
+use super::text::{property, Texts};
 use crate::error::{Error, LineCol, Result};
 use crate::scene::Layer;
 
@@ -47,8 +48,10 @@ pub(super) struct Source {
     pub layers: Vec<LayerSource>,
     /// The text, laid out.
     pub texts: Texts,
-    /// `image` elements.
+    /// `image` elements, but those `display: none` hides.
     pub images: usize,
+    /// Elements that `display: none` hides (see [`display_none`]).
+    pub display_none: usize,
     /// Layers that could not be located in the source.
     pub warnings: Vec<String>,
     /// The source with ids given to layers that had none (or shared one),
@@ -77,7 +80,7 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>, px_per_inch: f64) 
         });
     }
 
-    let mut images = 0;
+    let mut images: usize = 0;
     let mut id_count: HashMap<&str, usize> = HashMap::new();
     for node in doc.descendants().filter(|n| n.is_element()) {
         if is_svg(node, "image") {
@@ -107,13 +110,7 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>, px_per_inch: f64) 
             Some(label) => label.to_string(),
             None => format!("layer {}", layers.len() + 1),
         };
-        let hidden = node.attribute("display").map(str::trim) == Some("none")
-            || node.attribute("style").is_some_and(|s| {
-                let s: String = s.chars().filter(|c| !c.is_whitespace()).collect();
-                s.to_ascii_lowercase()
-                    .split(';')
-                    .any(|decl| decl == "display:none")
-            });
+        let hidden = is_display_none(node);
         let id = match old_id {
             Some(id) if id_count.get(id) == Some(&1) => id.to_string(),
             _ => {
@@ -181,13 +178,67 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>, px_per_inch: f64) 
         }
         out
     });
+    let hidden = display_none(root);
     Ok(Source {
         layers,
         texts,
-        images,
+        images: images.saturating_sub(hidden.images),
+        display_none: hidden.elements,
         warnings,
         rewritten,
     })
+}
+
+/// Whether `node` says `display: none`, in its `style` or as an
+/// attribute (what usvg reads; a stylesheet's rules are not seen here).
+fn is_display_none(node: roxmltree::Node<'_, '_>) -> bool {
+    property(node, "display") == Some("none")
+}
+
+/// What `display: none` hides, as [`display_none`] counts it.
+struct Hidden {
+    /// Hidden elements, each counted once with what it holds.
+    elements: usize,
+    /// `image` elements among what they and hidden layers hold.
+    images: usize,
+}
+
+/// The elements that would be drawn but for `display: none`: the outermost
+/// hidden element of each hidden part, a group with all it holds counted
+/// once. Left out: what is only drawn by reference (`defs`, `symbol`,
+/// clip paths, masks, markers, patterns), whose visibility is the `use`'s
+/// or the referrer's; `switch`, which draws one child of its choice; and
+/// hidden top-level layers, which have a warning of their own. Walked
+/// with a stack, so no depth of nesting can overflow it.
+fn display_none(root: roxmltree::Node<'_, '_>) -> Hidden {
+    const CONTAINERS: [&str; 3] = ["svg", "g", "a"];
+    const DRAWN: [&str; 10] = [
+        "path", "rect", "circle", "ellipse", "line", "polyline", "polygon", "text", "use", "image",
+    ];
+    let mut hidden = Hidden {
+        elements: 0,
+        images: 0,
+    };
+    let mut stack: Vec<_> = root.children().collect();
+    while let Some(node) = stack.pop() {
+        let name = node.tag_name().name();
+        let container = CONTAINERS.iter().any(|&c| is_svg(node, c));
+        if !container && !DRAWN.iter().any(|&d| is_svg(node, d)) {
+            continue;
+        }
+        if is_display_none(node) {
+            let layer = node.parent() == Some(root)
+                && name == "g"
+                && node.attribute((INKSCAPE_NS, "groupmode")) == Some("layer");
+            if !layer {
+                hidden.elements += 1;
+            }
+            hidden.images += node.descendants().filter(|n| is_svg(*n, "image")).count();
+        } else if container {
+            stack.extend(node.children());
+        }
+    }
+    hidden
 }
 
 fn unlocated_layer(label: &str) -> String {
@@ -219,6 +270,36 @@ fn after_tag_name(text: &str, node: roxmltree::Node<'_, '_>) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::super::test_support::{doc, import};
+
+    #[test]
+    fn what_display_none_hides_is_counted_once_per_hidden_element() {
+        let imported = import(&doc(r##"<path d="M0 0 L10 0" stroke="black"/>
+               <path d="M0 1 L10 1" stroke="black" display="none"/>
+               <g style="stroke: black; display: none !important">
+                 <path d="M0 2 L10 2"/><path d="M0 3 L10 3" display="none"/>
+                 <image href="a.png" width="5" height="5"/>
+               </g>
+               <g><a><circle cx="5" cy="5" r="2" stroke="black" style="display:none"/></a></g>
+               <text x="10" y="20" display="none">hidden</text>
+               <image href="b.png" width="5" height="5" display="none"/>
+               <defs><path id="d" d="M0 4 L10 4" stroke="black" display="none"/></defs>
+               <g inkscape:groupmode="layer" inkscape:label="off" display="none">
+                 <path d="M0 5 L10 5" stroke="black"/>
+                 <image href="c.png" width="5" height="5"/>
+               </g>
+               <image href="shown.png" width="5" height="5"/>
+               <path d="M0 6 L10 6" stroke="black" display="inline"/>"##));
+        assert_eq!(imported.scene.path_count(), 2);
+        assert_eq!(
+            imported.warnings,
+            [
+                "skipped 1 image: raster images cannot be plotted",
+                "skipped 5 elements: hidden by `display:none`",
+                "skipped layer 'off': it is hidden",
+                "2 paths outside every layer went to an extra layer 'unlayered' (pen 1)",
+            ]
+        );
+    }
 
     #[test]
     fn images_are_skipped_with_warnings_and_text_is_drawn() {

@@ -507,7 +507,7 @@ fn font_size(value: &str, parent: f64, px_per_inch: f64) -> Option<f64> {
 
 /// A presentation property of `node`: the last declaration of it in its
 /// `style` attribute, else its attribute of that name.
-fn property<'a>(node: roxmltree::Node<'a, '_>, name: &str) -> Option<&'a str> {
+pub(super) fn property<'a>(node: roxmltree::Node<'a, '_>, name: &str) -> Option<&'a str> {
     let declared = node.attribute("style").and_then(|style| {
         style
             .rsplit(';')

@@ -2,6 +2,13 @@
 //! page millimetres (all transforms baked in), with its layer, paint and
 //! id, and a count of what was left out. A text's stand-in path is drawn
 //! as the text's glyphs.
+//!
+//! What a viewer cannot see is not drawn: a stroke or fill is invisible
+//! when its paint is fully transparent (`transparent`, an alpha of 0, a
+//! gradient whose stops all are), its own opacity (`stroke-opacity`,
+//! `fill-opacity`) is 0, or a group around it has `opacity` 0 (usvg turns
+//! an element's own `opacity` into such a group). Only zero counts: a
+//! white stroke is a white pen, a faint one a pen.
 
 use std::collections::HashMap;
 
@@ -30,8 +37,15 @@ pub(super) struct Drawn {
     pub path: BezPath,
     /// Colour and drawn width in mm.
     pub stroke: Option<(Color, f64)>,
-    /// Fill colour.
+    /// Fill colour (a visible fill only).
     pub fill: Option<Color>,
+    /// Filled, with a stroke the document declares but makes invisible
+    /// (`stroke="transparent"`, `stroke-opacity="0"`): paint that the
+    /// preview shows and hidden-line removal counts, whose outline no pen
+    /// draws ([`Style::fill_only`](crate::scene::Style::fill_only)). A
+    /// fill without any stroke keeps the plotter's convention instead:
+    /// its pen draws the outline.
+    pub paint_only: bool,
     /// The single-stroke glyphs of a text: line work only, whose fill
     /// colour chooses the pen as a filled path's does but fills nothing.
     pub glyphs: bool,
@@ -47,7 +61,10 @@ pub(super) struct Walked {
     /// Paths with neither fill nor stroke, left out.
     pub unpainted: usize,
     /// Paths hidden by `visibility`, left out.
-    pub invisible: usize,
+    pub hidden: usize,
+    /// Paths whose stroke and fill are both invisible (transparent or
+    /// zero opacity), left out.
+    pub transparent: usize,
     /// Groups with a clip path that cuts, a mask or a filter (not applied).
     pub effects: usize,
     /// Texts drawn (a text a `use` repeats, as often as it is drawn).
@@ -99,12 +116,13 @@ fn walk_within(
             drawn: Vec::new(),
             found: vec![false; layers.len()],
             unpainted: 0,
-            invisible: 0,
+            hidden: 0,
+            transparent: 0,
             effects: 0,
             texts: 0,
         },
     };
-    walker.group(tree.root(), None)?;
+    walker.group(tree.root(), None, false)?;
     Ok(walker.walked)
 }
 
@@ -120,7 +138,14 @@ struct Walker<'a> {
 }
 
 impl Walker<'_> {
-    fn group(&mut self, group: &usvg::Group, layer: Option<usize>) -> Result<()> {
+    /// Walks the children of `group`, inside `layer`; `transparent`: a
+    /// group around it has opacity 0, so nothing in it is seen.
+    fn group(
+        &mut self,
+        group: &usvg::Group,
+        layer: Option<usize>,
+        transparent: bool,
+    ) -> Result<()> {
         for node in group.children() {
             match node {
                 usvg::Node::Group(g) => {
@@ -131,12 +156,16 @@ impl Walker<'_> {
                             inner = Some(i);
                         }
                     }
-                    if !clip_cuts_nothing(g) || g.mask().is_some() || !g.filters().is_empty() {
+                    let transparent = transparent || g.opacity().get() == 0.0;
+                    // An effect on what is not seen changes nothing drawn.
+                    if !transparent
+                        && (!clip_cuts_nothing(g) || g.mask().is_some() || !g.filters().is_empty())
+                    {
                         self.walked.effects += 1;
                     }
-                    self.group(g, inner)?;
+                    self.group(g, inner, transparent)?;
                 }
-                usvg::Node::Path(p) => self.path(p, layer)?,
+                usvg::Node::Path(p) => self.path(p, layer, transparent)?,
                 // Counted, with their warnings, in the pre-pass.
                 usvg::Node::Image(_) | usvg::Node::Text(_) => {}
             }
@@ -144,18 +173,33 @@ impl Walker<'_> {
         Ok(())
     }
 
-    fn path(&mut self, p: &usvg::Path, layer: Option<usize>) -> Result<()> {
+    /// Converts `p`, inside `layer`, unless it is not seen (`transparent`:
+    /// a group around it has opacity 0).
+    fn path(&mut self, p: &usvg::Path, layer: Option<usize>, transparent: bool) -> Result<()> {
         if p.fill().is_none() && p.stroke().is_none() {
             self.walked.unpainted += 1;
             return Ok(());
         }
         if !p.is_visible() {
-            self.walked.invisible += 1;
+            self.walked.hidden += 1;
+            return Ok(());
+        }
+        let stroke = p
+            .stroke()
+            .filter(|s| !transparent && shows(s.paint(), s.opacity()));
+        let fill = p
+            .fill()
+            .filter(|f| !transparent && shows(f.paint(), f.opacity()));
+        if stroke.is_none() && fill.is_none() {
+            self.walked.transparent += 1;
             return Ok(());
         }
         let to_page = self.to_mm * affine(p.abs_transform());
+        let scale = to_page.determinant().abs().sqrt();
+        let stroke = stroke.map(|s| stroke_of(s, scale));
+        let fill_color = fill.map(|f| paint_color(f.paint()));
         if let Some(text) = stand_in_index(p.data()).and_then(|i| self.texts.get(i)?.as_ref()) {
-            return self.glyphs(p, text, to_page, layer);
+            return self.glyphs(text, to_page, stroke, fill_color, layer);
         }
         // Checked before the path is built: the file size alone lets a
         // few very long paths hold far more segments than a plot needs.
@@ -188,14 +232,12 @@ impl Walker<'_> {
                 PathSegment::Close => path.close_path(),
             }
         }
-        let stroke = stroke_of(p, to_page.determinant().abs().sqrt());
         // Downstream, fills are non-zero (like an SVG without fill-rule).
         // An even-odd fill is redrawn as the same area's normalised
         // contours (holes wound against their outline): every edge of an
-        // even-odd fill bounds it, so the lines drawn stay the same.
-        let even_odd = p
-            .fill()
-            .is_some_and(|f| f.rule() == usvg::FillRule::EvenOdd);
+        // even-odd fill bounds it, so the lines drawn stay the same. An
+        // invisible fill is no area: the lines stay as written.
+        let even_odd = fill.is_some_and(|f| f.rule() == usvg::FillRule::EvenOdd);
         let path = if even_odd {
             match Region::new(path.clone(), FillRule::EvenOdd) {
                 Ok(r) if !r.is_empty() => r.into_path(),
@@ -209,7 +251,10 @@ impl Walker<'_> {
             id: p.id().to_string(),
             path,
             stroke,
-            fill: p.fill().map(|f| paint_color(f.paint())),
+            fill: fill_color,
+            // Its outline is not to be seen; no fill means no stroke at
+            // all, which leaves the outline to the pen.
+            paint_only: stroke.is_none() && p.stroke().is_some(),
             glyphs: false,
         });
         Ok(())
@@ -234,13 +279,14 @@ impl Walker<'_> {
         Ok(())
     }
 
-    /// Draws the glyphs of `text` where its stand-in `p` landed: mapped
-    /// to the page by `to_page`, with the stand-in's paint.
+    /// Draws the glyphs of `text` where its stand-in landed: mapped to
+    /// the page by `to_page`, with the stand-in's visible paint.
     fn glyphs(
         &mut self,
-        p: &usvg::Path,
         text: &Lettered,
         to_page: Affine,
+        stroke: Option<(Color, f64)>,
+        fill: Option<Color>,
         layer: Option<usize>,
     ) -> Result<()> {
         let els = text.path.elements();
@@ -273,8 +319,10 @@ impl Walker<'_> {
             layer,
             id: text.id.clone(),
             path,
-            stroke: stroke_of(p, to_page.determinant().abs().sqrt()),
-            fill: p.fill().map(|f| paint_color(f.paint())),
+            stroke,
+            fill,
+            // Glyphs are lines, whichever paint shows them.
+            paint_only: false,
             glyphs: true,
         });
         self.walked.texts += 1;
@@ -284,11 +332,23 @@ impl Walker<'_> {
 
 /// The stroke's colour and drawn width: the width scaled with the path
 /// by `scale` (the geometric mean for non-uniform scales).
-fn stroke_of(p: &usvg::Path, scale: f64) -> Option<(Color, f64)> {
-    p.stroke().map(|s| {
-        let width = round_size(f64::from(s.width().get()) * scale);
-        (paint_color(s.paint()), width)
-    })
+fn stroke_of(s: &usvg::Stroke, scale: f64) -> (Color, f64) {
+    let width = round_size(f64::from(s.width().get()) * scale);
+    (paint_color(s.paint()), width)
+}
+
+/// Whether a paint at `opacity` (usvg's product of the colour's alpha and
+/// `stroke-opacity` or `fill-opacity`) leaves any mark: not at opacity 0,
+/// nor a gradient all of whose stops are transparent. A pattern counts as
+/// seen (its content is not looked into).
+fn shows(paint: &usvg::Paint, opacity: usvg::Opacity) -> bool {
+    let stops_show = |stops: &[usvg::Stop]| stops.iter().any(|s| s.opacity().get() > 0.0);
+    opacity.get() > 0.0
+        && match paint {
+            usvg::Paint::Color(_) | usvg::Paint::Pattern(_) => true,
+            usvg::Paint::LinearGradient(g) => stops_show(g.stops()),
+            usvg::Paint::RadialGradient(g) => stops_show(g.stops()),
+        }
 }
 
 fn affine(t: usvg::Transform) -> Affine {
@@ -548,6 +608,105 @@ mod tests {
             region.area()
         );
         assert!(!region.contains((20.0, 20.0).into()));
+    }
+
+    #[test]
+    fn invisible_paint_is_not_drawn_and_is_counted() {
+        // Each of these is invisible: a transparent colour, zero alpha,
+        // zero stroke- or fill-opacity, zero opacity on the element or on
+        // a group around it, a gradient whose stops are all transparent.
+        let invisible = [
+            r#"<path d="M0 0 L10 0" stroke="transparent" fill="none"/>"#,
+            r#"<path d="M0 1 L10 1" stroke="rgba(255,0,0,0)" fill="none"/>"#,
+            r##"<path d="M0 2 L10 2" stroke="#ff000000" fill="none"/>"##,
+            r#"<path d="M0 3 L10 3" stroke="black" stroke-opacity="0" fill="none"/>"#,
+            r#"<path d="M0 4 L10 4" style="stroke:black;opacity:0" fill="none"/>"#,
+            r#"<rect x="0" y="5" width="5" height="5" fill="transparent"/>"#,
+            r#"<rect x="0" y="5" width="5" height="5" fill="red" fill-opacity="0"/>"#,
+            r#"<rect x="0" y="5" width="5" height="5" fill="red" stroke="blue" opacity="0"/>"#,
+            r#"<g opacity="0"><g opacity="1"><path d="M0 6 L10 6" stroke="black"/></g></g>"#,
+            r##"<linearGradient id="clear"><stop offset="0" stop-color="red" stop-opacity="0"/>
+               <stop offset="1" stop-color="blue" stop-opacity="0"/></linearGradient>
+               <path d="M0 7 L10 8" stroke="url(#clear)" fill="none"/>"##,
+            r#"<text x="10" y="20" font-size="10" fill="transparent">hidden</text>"#,
+        ];
+        for body in invisible {
+            let imported = import(&doc(body));
+            assert_eq!(imported.scene.path_count(), 0, "{body}");
+            assert_eq!(
+                imported.warnings,
+                ["skipped 1 path: invisible (transparent or zero opacity)"],
+                "{body}"
+            );
+        }
+        // All at once: one warning with the count.
+        let imported = import(&doc(&invisible.concat()));
+        assert_eq!(
+            imported.warnings,
+            ["skipped 11 paths: invisible (transparent or zero opacity)"]
+        );
+        // Faint is not invisible, and white is a pen (on dark paper).
+        let seen = [
+            r#"<path d="M0 0 L10 0" stroke="black" stroke-opacity="0.01" fill="none"/>"#,
+            r#"<path d="M0 1 L10 1" stroke="white" fill="none"/>"#,
+            r#"<path d="M0 2 L10 2" stroke="rgba(0,0,0,0.5)" opacity="0.1" fill="none"/>"#,
+            r##"<linearGradient id="half"><stop offset="0" stop-color="red" stop-opacity="0"/>
+               <stop offset="1" stop-color="blue"/></linearGradient>
+               <path d="M0 3 L10 4" stroke="url(#half)" fill="none"/>"##,
+        ];
+        for body in seen {
+            let imported = import(&doc(body));
+            assert_eq!(imported.scene.path_count(), 1, "{body}");
+            assert!(
+                imported.warnings.is_empty(),
+                "{body}: {:?}",
+                imported.warnings
+            );
+        }
+        assert_eq!(
+            import(&doc(seen[1])).scene.pens[0].color,
+            Color::rgb(255, 255, 255)
+        );
+    }
+
+    #[test]
+    fn a_transparent_fill_is_no_region_and_a_transparent_stroke_draws_no_outline() {
+        let imported = import(&doc(
+            r##"<rect id="ring" x="0" y="0" width="10" height="10" stroke="blue"
+                  fill="red" fill-opacity="0" fill-rule="evenodd"/>
+               <rect id="page" x="20" y="0" width="10" height="10" fill="white"
+                  stroke="transparent"/>
+               <rect id="plain" x="40" y="0" width="10" height="10" fill="green"/>
+               <text id="label" x="60" y="10" font-size="10" stroke="transparent">A</text>"##,
+        ));
+        let mut got = Vec::new();
+        imported.scene.visit_paths(|l, p, _| {
+            got.push((p.id.clone(), l.pen, p.style.fill, p.style.fill_only))
+        });
+        assert_eq!(
+            got,
+            [
+                // The line alone.
+                ("ring".to_string(), 1, None, false),
+                // Paint no pen draws, with the first pen (not a pen of
+                // its own, nor its colour).
+                ("page".to_string(), 1, Some(Color::rgb(255, 255, 255)), true),
+                // A fill without a stroke: the pen draws its outline.
+                ("plain".to_string(), 2, Some(Color::rgb(0, 128, 0)), false),
+                // Text is lines, whichever paint shows it.
+                ("label".to_string(), 3, None, false),
+            ]
+        );
+        assert_eq!(imported.scene.pens[0].color, Color::rgb(0, 0, 255));
+        // Paint alone is a pen's (its colour's) when nothing is drawn.
+        let alone = import(&doc(
+            r#"<rect x="0" y="0" width="9" height="9" fill="red" stroke="transparent"/>"#,
+        ));
+        assert_eq!(alone.scene.pens[0].color, Color::rgb(255, 0, 0));
+        assert_eq!(alone.scene.stats().paths, 0);
+        assert_eq!(imported.warnings.len(), 1, "{:?}", imported.warnings);
+        // The plot statistics count what the pens draw.
+        assert_eq!(imported.scene.stats().paths, 3);
     }
 
     #[test]
