@@ -197,3 +197,29 @@ fn a_hundred_thousand_colours_are_plotted_pen_by_pen_in_one_pass() {
         "every stroke drawn"
     );
 }
+
+/// A description that names a FIFO (someone else's description, a file
+/// swapped for a pipe) is refused at once: opening a FIFO would wait for
+/// a writer that never comes.
+#[cfg(unix)]
+#[test]
+fn a_description_naming_a_fifo_is_refused_without_waiting() {
+    let dir = tempdir();
+    let made = std::process::Command::new("mkfifo")
+        .arg(dir.path().join("pipe.svg"))
+        .status()
+        .unwrap();
+    assert!(made.success());
+    fs::write(
+        dir.path().join("scene.toml"),
+        "version = 1\n[[layers]]\nname = \"a\"\n[[layers.paths]]\nsvg = \"pipe.svg\"\n",
+    )
+    .unwrap();
+    moyo(&dir)
+        .args(["render", "scene.toml", "-o", "out.svg"])
+        .timeout(std::time::Duration::from_secs(60))
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("not a regular file"));
+    assert!(!dir.path().join("out.svg").exists());
+}

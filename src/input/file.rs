@@ -2,8 +2,15 @@
 //! files it is given (descriptions, SVGs, motifs, strokes, images,
 //! meshes), so that a huge file, or a device that never ends
 //! (`/dev/zero`), is refused with its size instead of filling memory.
+//!
+//! A file named on the command line may be anything the user points at (a
+//! pipe: `moyo plot /dev/stdin`). A file a *description* names, and every
+//! file the studio opens, must be a regular file ([`read_regular_file`]):
+//! a FIFO would block the open until some writer came, and a device might
+//! never end, so a description someone else wrote could hang moyo.
 
-use std::io::Read;
+use std::fs::{File, OpenOptions};
+use std::io::{Error as IoError, ErrorKind, Read};
 use std::path::Path;
 
 /// The largest file moyo reads, in bytes (256 MiB): more than any plot
@@ -21,15 +28,15 @@ pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
 }
 
 fn read_at_most(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
-    read_open(std::fs::File::open(path)?, limit)
+    read_open(File::open(path)?, limit)
 }
 
 /// Reads `file`, already open, whole up to `limit` bytes (as
 /// [`read_file`], for a caller that opens it its own way).
-pub(crate) fn read_open(file: std::fs::File, limit: u64) -> std::io::Result<Vec<u8>> {
+fn read_open(file: File, limit: u64) -> std::io::Result<Vec<u8>> {
     let too_large = || {
-        std::io::Error::new(
-            std::io::ErrorKind::FileTooLarge,
+        IoError::new(
+            ErrorKind::FileTooLarge,
             format!(
                 "larger than {} MiB, the largest file moyo reads",
                 limit / (1024 * 1024)
@@ -47,6 +54,51 @@ pub(crate) fn read_open(file: std::fs::File, limit: u64) -> std::io::Result<Vec<
         return Err(too_large());
     }
     Ok(bytes)
+}
+
+/// Reads the regular file at `path` whole, up to [`MAX_FILE_BYTES`],
+/// without ever waiting on it (see the module documentation).
+///
+/// # Errors
+/// The I/O error, [`ErrorKind::InvalidInput`] for anything but a regular
+/// file (found so before it is opened when it can be, and checked again on
+/// the open file), or what [`read_file`] refuses.
+pub fn read_regular_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    // Not opened at all when it is plainly no file (a device's open may
+    // act); the open file is checked again, for what changed between.
+    regular(&std::fs::metadata(path)?)?;
+    let file = open_without_waiting(path)?;
+    regular(&file.metadata()?)?;
+    read_open(file, MAX_FILE_BYTES)
+}
+
+/// Opens `path` for reading without waiting: opening a FIFO blocks until
+/// a writer comes, unless asked not to (`O_NONBLOCK`, which changes
+/// nothing for a regular file).
+#[cfg(unix)]
+fn open_without_waiting(path: &Path) -> std::io::Result<File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+}
+
+/// Opens `path` for reading (no FIFO is opened by a path here).
+#[cfg(not(unix))]
+fn open_without_waiting(path: &Path) -> std::io::Result<File> {
+    OpenOptions::new().read(true).open(path)
+}
+
+fn regular(metadata: &std::fs::Metadata) -> std::io::Result<()> {
+    if metadata.file_type().is_file() {
+        Ok(())
+    } else {
+        Err(IoError::new(
+            ErrorKind::InvalidInput,
+            "not a regular file (a pipe, a device or a folder): moyo reads only files here",
+        ))
+    }
 }
 
 /// [`read_file`] as UTF-8 text.
@@ -91,6 +143,33 @@ mod tests {
     fn a_device_that_never_ends_is_refused() {
         let e = read_at_most(Path::new("/dev/zero"), 1 << 20).unwrap_err();
         assert_eq!(e.kind(), std::io::ErrorKind::FileTooLarge);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_is_refused_without_waiting_for_a_writer() {
+        let dir = std::env::temp_dir().join(format!("moyo-fifo-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fifo = dir.join("motif.svg");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let e = read_regular_file(&fifo).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidInput);
+        assert!(e.to_string().starts_with("not a regular file"), "{e}");
+        // The same when what was checked first is not what is opened.
+        let opened = open_without_waiting(&fifo).unwrap();
+        assert!(regular(&opened.metadata().unwrap()).is_err());
+        for path in [Path::new("/dev/zero"), dir.as_path()] {
+            let e = read_regular_file(path).unwrap_err();
+            assert_eq!(e.kind(), ErrorKind::InvalidInput, "{}", path.display());
+        }
+        let file = dir.join("ok.txt");
+        std::fs::write(&file, "ok").unwrap();
+        assert_eq!(read_regular_file(&file).unwrap(), b"ok");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

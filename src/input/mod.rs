@@ -12,8 +12,8 @@ mod image;
 mod svg;
 
 // For the studio, which opens a file its own way (regular files only).
-pub use file::{read_file, read_text, MAX_FILE_BYTES};
 #[cfg(feature = "studio")]
-pub(crate) use file::{read_open, utf8};
+pub(crate) use file::utf8;
+pub use file::{read_file, read_regular_file, read_text, MAX_FILE_BYTES};
 pub use image::decode_image;
 pub use svg::{import_svg, ImportOptions, Imported, PenGrouping, MAX_IMPORT_SEGMENTS};

@@ -69,7 +69,12 @@ fn push_new(list: &mut Vec<String>, name: &str) {
 pub fn load_motifs(spec: &ValidSpec, base: &Path) -> Result<Library> {
     load_motifs_with(spec, &|name| {
         let path = base.join(name);
-        (path.display().to_string(), crate::input::read_file(&path))
+        // A description may come from anyone: what it names must be a
+        // file, never a FIFO that would hang the render.
+        (
+            path.display().to_string(),
+            crate::input::read_regular_file(&path),
+        )
     })
 }
 

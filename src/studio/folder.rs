@@ -5,69 +5,20 @@
 //! studio reads and writes regular files only: a FIFO, a device or a
 //! socket in the folder would block a read, or never end it.
 
-use std::fs::{File, OpenOptions};
-use std::io::{Error as IoError, ErrorKind};
 use std::path::{Component, Path, PathBuf};
 
 use crate::error::{Error, Result};
-use crate::input::{read_open, utf8, MAX_FILE_BYTES};
+use crate::input::{read_regular_file, utf8};
 
-/// Reads the regular file at `path` whole, up to
-/// [`crate::input::MAX_FILE_BYTES`]. Blocking: call it off the server's
-/// threads.
+/// [`crate::input::read_regular_file`] as UTF-8 text. Blocking: call it
+/// off the server's threads.
 ///
 /// # Errors
-/// The I/O error, [`ErrorKind::InvalidInput`] for anything but a regular
-/// file (found so before it is opened when it can be, and checked again
-/// on the open file), or what [`crate::input::read_file`] refuses.
-pub(crate) fn read(path: &Path) -> std::io::Result<Vec<u8>> {
-    // Not opened at all when it is plainly no file (a device's open may
-    // act); the open file is checked again, for what changed between.
-    regular(&std::fs::metadata(path)?)?;
-    let file = open_without_waiting(path)?;
-    regular(&file.metadata()?)?;
-    read_open(file, MAX_FILE_BYTES)
-}
-
-/// [`read`] as UTF-8 text.
-///
-/// # Errors
-/// As [`read`], and [`ErrorKind::InvalidData`] for text that is not UTF-8.
+/// As [`crate::input::read_regular_file`], and
+/// [`std::io::ErrorKind::InvalidData`]
+/// for text that is not UTF-8.
 pub(crate) fn read_text(path: &Path) -> std::io::Result<String> {
-    utf8(read(path)?)
-}
-
-/// Opens `path` for reading without waiting: opening a FIFO blocks until
-/// a writer comes, unless asked not to (`O_NONBLOCK`, which changes
-/// nothing for a regular file).
-#[cfg(unix)]
-fn open_without_waiting(path: &Path) -> std::io::Result<File> {
-    use std::os::unix::fs::OpenOptionsExt;
-    OpenOptions::new()
-        .read(true)
-        .custom_flags(libc::O_NONBLOCK)
-        .open(path)
-}
-
-/// Opens `path` for reading (no FIFO is opened by a path here).
-#[cfg(not(unix))]
-fn open_without_waiting(path: &Path) -> std::io::Result<File> {
-    OpenOptions::new().read(true).open(path)
-}
-
-fn regular(metadata: &std::fs::Metadata) -> std::io::Result<()> {
-    if metadata.file_type().is_file() {
-        Ok(())
-    } else {
-        Err(not_regular())
-    }
-}
-
-fn not_regular() -> IoError {
-    IoError::new(
-        ErrorKind::InvalidInput,
-        "not a regular file: the studio reads and writes only files",
-    )
+    utf8(read_regular_file(path)?)
 }
 
 /// The folder, made absolute and with its links resolved.
@@ -141,7 +92,10 @@ pub(crate) fn check_writable(path: &Path, field: &str) -> Result<()> {
     match std::fs::metadata(path) {
         Ok(metadata) if !metadata.file_type().is_file() => Err(Error::invalid(
             field,
-            format!("{}: {}", path.display(), not_regular()),
+            format!(
+                "{}: not a regular file: the studio writes only files",
+                path.display()
+            ),
         )),
         _ => Ok(()),
     }
@@ -179,8 +133,8 @@ mod tests {
         assert_eq!(read_text(&file).unwrap(), "version = 1\n");
         assert!(check_writable(&file, "path").is_ok());
         assert!(check_writable(&dir.path().join("new.toml"), "path").is_ok());
-        let e = read(dir.path()).unwrap_err();
-        assert_eq!(e.kind(), ErrorKind::InvalidInput);
+        let e = read_text(dir.path()).unwrap_err();
+        assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput);
         assert!(check_writable(dir.path(), "path").is_err());
         #[cfg(unix)]
         {
@@ -191,12 +145,9 @@ mod tests {
                 .status()
                 .unwrap();
             assert!(made.success());
-            let e = read(&fifo).unwrap_err();
+            let e = read_text(&fifo).unwrap_err();
             assert!(e.to_string().contains("not a regular file"), "{e}");
             assert!(check_writable(&fifo, "path").is_err());
-            // The same when what is checked first is not what is opened.
-            let opened = open_without_waiting(&fifo).unwrap();
-            assert!(regular(&opened.metadata().unwrap()).is_err());
         }
     }
 }

@@ -196,7 +196,7 @@ impl Session {
         let library = load_motifs_with(&spec, &|name| match self.folder.resolve(name, name) {
             // Regular files only: a FIFO the description names would hold
             // the render (and its thread) for ever.
-            Ok(path) => match super::folder::read(&path) {
+            Ok(path) => match crate::input::read_regular_file(&path) {
                 // A template's own files (its images) are built in.
                 Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                     match crate::templates::file(name) {
