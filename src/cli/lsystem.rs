@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 
 use super::{check_outputs, identity, CliError, Named};
-use moyo::output::write_atomic;
+use moyo::output::write_all_atomic;
 use moyo::project::{self, Rendered};
 use moyo::spec::{
     Format, LSystemSpec, LimbStyle, NamedView, PaperSize, SceneSpec, SketchSpec, ValidSpec, View,
@@ -314,21 +314,24 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
         }
         None => String::new(),
     };
-    write_atomic(&args.output, rendered.svg.as_bytes())?;
+    // All or none, frames included: a failed output leaves every old file.
+    let mut files: Vec<(PathBuf, &[u8])> = vec![(args.output.clone(), rendered.svg.as_bytes())];
     if let (Some(path), Some(bytes)) = (&args.png, &png) {
-        write_atomic(path, bytes)?;
+        files.push((path.clone(), bytes));
     }
     if let Some(dir) = &args.frames {
         std::fs::create_dir_all(dir)
             .map_err(|e| CliError::Message(format!("{}: {e}", dir.display())))?;
         for (k, (svg, png)) in frames.iter().enumerate() {
-            write_atomic(&dir.join(format!("frame-{k:03}.svg")), svg.as_bytes())?;
+            files.push((dir.join(format!("frame-{k:03}.svg")), svg.as_bytes()));
             if let Some(bytes) = png {
-                write_atomic(&dir.join(format!("frame-{k:03}.png")), bytes)?;
+                files.push((dir.join(format!("frame-{k:03}.png")), bytes));
             }
         }
-        write_atomic(&dir.join("growth.svg"), growth.as_bytes())?;
+        files.push((dir.join("growth.svg"), growth.as_bytes()));
     }
+    let files: Vec<(&Path, &[u8])> = files.iter().map(|(p, b)| (p.as_path(), *b)).collect();
+    write_all_atomic(&files)?;
     let stats = rendered.scene.stats();
     eprintln!(
         "wrote {}{} ({} paths, {:.0} mm pen-down){}",
