@@ -387,3 +387,41 @@ fn a_signal_stops_a_run_and_leaves_nothing_behind() {
         assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
     }
 }
+
+#[test]
+fn frames_refuse_a_file_and_replace_their_own_old_frames() {
+    let dir = with_inputs();
+    let lsystem = ["lsystem", "--axiom", "F", "--angle", "90", "-o", "l.svg"];
+    // A file where the frames folder should be: refused before any work.
+    moyo(&dir)
+        .args(lsystem)
+        .args(["--frames", "in.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::eq(
+            "error: --frames in.svg: not a folder; name a folder for the frames\n",
+        ));
+    assert!(!dir.path().join("l.svg").exists());
+
+    // An earlier, longer growth with PNGs; and a file of the user's.
+    let frames = dir.path().join("f");
+    fs::create_dir(&frames).unwrap();
+    for k in 0..40 {
+        fs::write(frames.join(format!("frame-{k:03}.svg")), b"old").unwrap();
+        fs::write(frames.join(format!("frame-{k:03}.png")), b"old").unwrap();
+    }
+    fs::write(frames.join("notes.txt"), b"mine").unwrap();
+    moyo(&dir)
+        .args(lsystem)
+        .args(["--frames", "f"])
+        .assert()
+        .success();
+    let names = entries(&frames);
+    assert!(names.contains("notes.txt") && names.contains("growth.svg"));
+    let written: Vec<&String> = names.iter().filter(|n| n.starts_with("frame-")).collect();
+    assert!(!written.is_empty() && written.len() < 40, "{names:?}");
+    assert!(written.iter().all(|n| n.ends_with(".svg")), "{names:?}");
+    for name in written {
+        assert_ne!(fs::read(frames.join(name)).unwrap(), b"old", "{name}");
+    }
+}
