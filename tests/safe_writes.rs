@@ -4,7 +4,10 @@
 //! cannot be written fails with a message naming it and leaves nothing
 //! behind; and two runs writing one file at once leave one whole file,
 //! never a mix (every output goes to a temporary file that is renamed over
-//! the target: `moyo::output::write_atomic`).
+//! the target: `moyo::output::write_atomic`). Nothing is left behind: a
+//! run with several outputs writes all of them or none, a signal removes
+//! the temporary files, and a stale one from a killed run goes with the
+//! next write into its folder.
 
 use std::fs;
 use std::os::unix::fs::PermissionsExt as _;
@@ -272,5 +275,153 @@ fn two_runs_writing_one_file_leave_one_whole_file() {
         assert!(out == a || out == b, "a mix of {} bytes", out.len());
         let names = entries(dir.path());
         assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
+    }
+}
+
+/// The names of the temporary files in `dir`.
+fn temporaries(dir: &Path) -> Vec<String> {
+    entries(dir)
+        .into_iter()
+        .filter(|n| n.starts_with(".moyo-") && n.ends_with(".tmp"))
+        .collect()
+}
+
+#[test]
+fn several_outputs_are_written_all_or_none() {
+    let dir = with_inputs();
+    let Some(place) = unwritable(dir.path()) else {
+        eprintln!("every directory is writable here; nothing to test");
+        return;
+    };
+    let blocked = place.join("b.png");
+    let before = fs::read(dir.path().join("a.svg")).unwrap();
+    // The PNG cannot be written: the SVG written first is not renamed.
+    for args in [
+        vec!["render", "-t", "tree-rules", "-o", "a.svg", "--png"],
+        vec!["render", "-t", "tree-rules", "-o", "new.svg", "--png"],
+        vec!["plot", "in.svg", "-o", "new.svg", "--png"],
+        vec!["fill", "in.svg", "-o", "new.svg", "--png"],
+    ] {
+        moyo(&dir)
+            .args(&args)
+            .arg(&blocked)
+            .assert()
+            .failure()
+            .stderr(predicate::str::contains(blocked.display().to_string()));
+        assert!(!dir.path().join("new.svg").exists(), "{args:?}");
+        assert_eq!(fs::read(dir.path().join("a.svg")).unwrap(), before);
+        assert!(temporaries(dir.path()).is_empty());
+    }
+    // A PNG that would replace a folder is refused before anything is
+    // written.
+    fs::create_dir(dir.path().join("taken.png")).unwrap();
+    moyo(&dir)
+        .args([
+            "render",
+            "-t",
+            "tree-rules",
+            "-o",
+            "new.svg",
+            "--png",
+            "taken.png",
+        ])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("taken.png: a folder, not a file"));
+    assert!(!dir.path().join("new.svg").exists());
+}
+
+#[test]
+fn a_stale_temporary_file_is_removed_by_the_next_write_a_fresh_one_kept() {
+    let dir = tempdir();
+    let long_ago = std::time::SystemTime::now() - moyo::output::STALE_AFTER;
+    let stale = dir.path().join(".moyo-killed.tmp");
+    fs::File::create(&stale)
+        .unwrap()
+        .set_modified(long_ago)
+        .unwrap();
+    // Another run's, writing now.
+    fs::write(dir.path().join(".moyo-running.tmp"), b"").unwrap();
+    moyo(&dir)
+        .args(["render", "-t", "tree-rules", "-o", "out.svg"])
+        .assert()
+        .success();
+    let names: Vec<String> = entries(dir.path()).into_iter().collect();
+    assert_eq!(names, [".moyo-running.tmp", "out.svg"]);
+}
+
+/// A signal stops a run with the shell's code for it, and leaves no file:
+/// neither the output nor a temporary file. (A temporary file exists for
+/// milliseconds, too short to aim a signal at from here; that the handler
+/// removes the registered temporary files, and that none is created after
+/// it ran, is tested in `output::atomic`.)
+#[test]
+fn a_signal_stops_a_run_and_leaves_nothing_behind() {
+    let dir = tempdir();
+    let bin = assert_cmd::cargo::cargo_bin("moyo");
+    for (signal, code) in [("TERM", 143), ("INT", 130)] {
+        // Seconds of work in a test build.
+        let mut run = Process::new(&bin)
+            .current_dir(dir.path())
+            .args([
+                "render",
+                "-t",
+                "stipple-lbg",
+                "-o",
+                "out.svg",
+                "--png",
+                "out.png",
+            ])
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        // Past the start, where the handler is installed.
+        std::thread::sleep(std::time::Duration::from_millis(700));
+        let sent = Process::new("kill")
+            .args([format!("-{signal}"), run.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let status = run.wait().unwrap();
+        assert_eq!(status.code(), Some(code), "SIG{signal}: {status}");
+        assert!(entries(dir.path()).is_empty(), "{:?}", entries(dir.path()));
+    }
+}
+
+#[test]
+fn frames_refuse_a_file_and_replace_their_own_old_frames() {
+    let dir = with_inputs();
+    let lsystem = ["lsystem", "--axiom", "F", "--angle", "90", "-o", "l.svg"];
+    // A file where the frames folder should be: refused before any work.
+    moyo(&dir)
+        .args(lsystem)
+        .args(["--frames", "in.svg"])
+        .assert()
+        .failure()
+        .stderr(predicate::eq(
+            "error: --frames in.svg: not a folder; name a folder for the frames\n",
+        ));
+    assert!(!dir.path().join("l.svg").exists());
+
+    // An earlier, longer growth with PNGs; and a file of the user's.
+    let frames = dir.path().join("f");
+    fs::create_dir(&frames).unwrap();
+    for k in 0..40 {
+        fs::write(frames.join(format!("frame-{k:03}.svg")), b"old").unwrap();
+        fs::write(frames.join(format!("frame-{k:03}.png")), b"old").unwrap();
+    }
+    fs::write(frames.join("notes.txt"), b"mine").unwrap();
+    moyo(&dir)
+        .args(lsystem)
+        .args(["--frames", "f"])
+        .assert()
+        .success();
+    let names = entries(&frames);
+    assert!(names.contains("notes.txt") && names.contains("growth.svg"));
+    let written: Vec<&String> = names.iter().filter(|n| n.starts_with("frame-")).collect();
+    assert!(!written.is_empty() && written.len() < 40, "{names:?}");
+    assert!(written.iter().all(|n| n.ends_with(".svg")), "{names:?}");
+    for name in written {
+        assert_ne!(fs::read(frames.join(name)).unwrap(), b"old", "{name}");
     }
 }

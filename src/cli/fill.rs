@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use super::plot::load_svg;
 use super::{check_outputs, warn_outside_page, CliError, Named};
 use moyo::input::ImportOptions;
-use moyo::output::write_atomic;
+use moyo::output::write_all_atomic;
 use moyo::project::{self, FillJob, FillPattern};
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -175,10 +175,12 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
         Some(_) => Some(filled.png(args.dpi)?),
         None => None,
     };
-    write_atomic(&args.output, svg.as_bytes())?;
+    // All or none: a failed output leaves every old file.
+    let mut files: Vec<(&Path, &[u8])> = vec![(&args.output, svg.as_bytes())];
     if let (Some(path), Some(bytes)) = (&args.png, &png) {
-        write_atomic(path, bytes)?;
+        files.push((path, bytes));
     }
+    write_all_atomic(&files)?;
     let all = filled.plotted.stats();
     eprintln!(
         "wrote {}{} ({} paths, {:.0} mm pen-down; the {} fill: {} paths, {:.0} mm, on {} pen {})",

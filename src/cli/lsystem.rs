@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 
 use super::{check_outputs, identity, CliError, Named};
-use moyo::output::write_atomic;
+use moyo::output::write_all_atomic;
 use moyo::project::{self, Rendered};
 use moyo::spec::{
     Format, LSystemSpec, LimbStyle, NamedView, PaperSize, SceneSpec, SketchSpec, ValidSpec, View,
@@ -93,7 +93,8 @@ pub(crate) struct LSystemArgs {
     /// Also write the drawing after every rewriting step (every module
     /// step with --stroke) into this folder: frame-000.svg, … (and .png
     /// with --png), and growth.svg, all of them in one loop (a browser
-    /// plays it).
+    /// plays it). Older frames there that this run does not write are
+    /// removed; a file of this name is refused.
     #[arg(long, value_name = "DIR", help_heading = "Output")]
     frames: Option<PathBuf>,
 }
@@ -259,15 +260,41 @@ fn frames_write(dir: &Path, path: &Path) -> bool {
     let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
         return false;
     };
-    let frame = name
-        .strip_prefix("frame-")
-        .and_then(|rest| rest.strip_suffix(".svg").or(rest.strip_suffix(".png")))
-        .is_some_and(|k| k.len() >= 3 && k.bytes().all(|b| b.is_ascii_digit()));
+    let frame = is_frame(name);
     let folder = path
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     (frame || name == "growth.svg") && identity(folder) == identity(dir)
+}
+
+/// Whether `name` is the name of a frame `--frames` writes
+/// (`frame-000.svg`, `frame-000.png`, …).
+fn is_frame(name: &str) -> bool {
+    name.strip_prefix("frame-")
+        .and_then(|rest| rest.strip_suffix(".svg").or(rest.strip_suffix(".png")))
+        .is_some_and(|k| k.len() >= 3 && k.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// Removes the frames in `dir` that this run did not write (`written`):
+/// those of an earlier, longer growth, which would play on after this
+/// one's. Only names `--frames` writes are touched.
+fn remove_old_frames(dir: &Path, written: &[(PathBuf, &[u8])]) -> Result<(), CliError> {
+    let io = |path: &Path, e: std::io::Error| CliError::Message(format!("{}: {e}", path.display()));
+    let entries = std::fs::read_dir(dir).map_err(|e| io(dir, e))?;
+    for entry in entries {
+        let entry = entry.map_err(|e| io(dir, e))?;
+        let path = entry.path();
+        let old = entry.file_name().to_str().is_some_and(is_frame)
+            && entry.file_type().is_ok_and(|t| t.is_file())
+            && !written.iter().any(|(p, _)| *p == path);
+        if old {
+            std::fs::remove_file(&path).map_err(|e| {
+                CliError::Message(format!("{}: an old frame not removed: {e}", path.display()))
+            })?;
+        }
+    }
+    Ok(())
 }
 
 /// `moyo lsystem`.
@@ -281,6 +308,12 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
     outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
     check_outputs(&inputs, &outputs)?;
     if let Some(dir) = &args.frames {
+        if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
+            return Err(CliError::Message(format!(
+                "--frames {}: not a folder; name a folder for the frames",
+                dir.display()
+            )));
+        }
         let named = inputs.iter().chain(&outputs);
         if let Some((flag, path)) = named.into_iter().find(|(_, p)| frames_write(dir, p)) {
             return Err(CliError::Message(format!(
@@ -314,20 +347,26 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
         }
         None => String::new(),
     };
-    write_atomic(&args.output, rendered.svg.as_bytes())?;
+    // All or none, frames included: a failed output leaves every old file.
+    let mut files: Vec<(PathBuf, &[u8])> = vec![(args.output.clone(), rendered.svg.as_bytes())];
     if let (Some(path), Some(bytes)) = (&args.png, &png) {
-        write_atomic(path, bytes)?;
+        files.push((path.clone(), bytes));
     }
     if let Some(dir) = &args.frames {
         std::fs::create_dir_all(dir)
             .map_err(|e| CliError::Message(format!("{}: {e}", dir.display())))?;
         for (k, (svg, png)) in frames.iter().enumerate() {
-            write_atomic(&dir.join(format!("frame-{k:03}.svg")), svg.as_bytes())?;
+            files.push((dir.join(format!("frame-{k:03}.svg")), svg.as_bytes()));
             if let Some(bytes) = png {
-                write_atomic(&dir.join(format!("frame-{k:03}.png")), bytes)?;
+                files.push((dir.join(format!("frame-{k:03}.png")), bytes));
             }
         }
-        write_atomic(&dir.join("growth.svg"), growth.as_bytes())?;
+        files.push((dir.join("growth.svg"), growth.as_bytes()));
+    }
+    let written: Vec<(&Path, &[u8])> = files.iter().map(|(p, b)| (p.as_path(), *b)).collect();
+    write_all_atomic(&written)?;
+    if let Some(dir) = &args.frames {
+        remove_old_frames(dir, &files)?;
     }
     let stats = rendered.scene.stats();
     eprintln!(

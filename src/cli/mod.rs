@@ -187,6 +187,7 @@ pub(crate) fn parse_dpi(s: &str) -> Result<f64, String> {
 /// Parses the command line and runs it.
 pub(crate) fn run() -> ExitCode {
     let cli = Cli::parse();
+    remove_temporaries_on_signal();
     let result = match cli.command {
         Command::Render(args) => render(&args),
         Command::Templates => list_templates(),
@@ -208,6 +209,34 @@ pub(crate) fn run() -> ExitCode {
         }
     }
 }
+
+/// On SIGINT (Ctrl-C) or SIGTERM, removes the temporary files of the
+/// writes under way and exits as a shell reports a death by that signal
+/// (130, 143): a stopped run leaves no `.moyo-*.tmp` beside its outputs.
+/// The handler runs on a thread of its own, so it may take the lock the
+/// writes register their files under. The library installs no handler
+/// (a process's signals are its program's business).
+#[cfg(unix)]
+fn remove_temporaries_on_signal() {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    // Without the handler (it cannot be installed, which does not happen
+    // in practice) a signal kills the run as before, and the next write
+    // into the folder removes what it left once stale: no reason to stop.
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(signal) = signals.forever().next() {
+            moyo::output::remove_temporaries();
+            std::process::exit(128 + signal);
+        }
+    });
+}
+
+/// Elsewhere the platform's default stands; a stale temporary file is
+/// removed by the next write into its folder.
+#[cfg(not(unix))]
+fn remove_temporaries_on_signal() {}
 
 pub(crate) enum CliError {
     /// The reader of standard output went away: not an error for a filter.
@@ -348,19 +377,21 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
         None => None,
     };
 
-    write_atomic(&args.output, rendered.svg.as_bytes())?;
+    // All or none: a failed output leaves every old file.
+    let mut files: Vec<(&Path, &[u8])> = vec![(&args.output, rendered.svg.as_bytes())];
     if let (Some(path), Some(svg)) = (&args.preview_svg, &preview) {
-        write_atomic(path, svg.as_bytes())?;
+        files.push((path, svg.as_bytes()));
     }
     if let (Some(path), Some(bytes)) = (&args.png, &png) {
-        write_atomic(path, bytes)?;
+        files.push((path, bytes));
     }
     if let (Some(path), Some(text)) = (&args.dump, &dump) {
-        write_atomic(path, text.as_bytes())?;
+        files.push((path, text.as_bytes()));
     }
     if let (Some(path), Some(text)) = (&args.obj, &obj) {
-        write_atomic(path, text.as_bytes())?;
+        files.push((path, text.as_bytes()));
     }
+    moyo::output::write_all_atomic(&files)?;
 
     let stats = rendered.scene.stats();
     let also: Vec<String> = [&args.preview_svg, &args.png, &args.obj]

@@ -10,7 +10,7 @@ use moyo::input::{ImportOptions, Imported};
 use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
 use moyo::output::gcode::{GcodeOptions, Origin};
 use moyo::output::hpgl::{CutterOptions, HpglOptions};
-use moyo::output::{write_atomic, RunOptions, SvgOptions};
+use moyo::output::{write_all_atomic, RunOptions, SvgOptions};
 use moyo::plot::{
     self, BlotOptions, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
     OccludeOptions, PlotOptions, SimplifyOptions, SortOptions, Speeds, TransformOptions,
@@ -582,13 +582,15 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
         .preview_svg
         .as_ref()
         .map(|path| (path, plotted.preview_svg(args.precision)));
-    write_atomic(&args.output, plotted.bytes.as_bytes())?;
+    // All or none: a failed output leaves every old file.
+    let mut files: Vec<(&Path, &[u8])> = vec![(&args.output, plotted.bytes.as_bytes())];
     if let Some((path, svg)) = &preview_svg {
-        write_atomic(path, svg.as_bytes())?;
+        files.push((path, svg.as_bytes()));
     }
     if let (Some(path), Some(png)) = (&args.png, &plotted.png) {
-        write_atomic(path, png)?;
+        files.push((path, png));
     }
+    write_all_atomic(&files)?;
     let s = plot::stats(&plotted.scene, &speeds);
     eprintln!(
         "wrote {} ({} paths, {:.0} mm pen-down, {:.0} mm pen-up, about {} at constant speed, {} with acceleration)",

@@ -18,7 +18,9 @@
 //!   as Wavefront OBJ;
 //! - [`animated_svg`]: frames of a growth in one looping SVG, to watch;
 //! - [`write_atomic`]: puts any of these on disk without half-written files
-//!   ([`check_output_folder`]: whether the folder is there, asked first);
+//!   ([`check_output_folder`]: whether the folder is there, asked first;
+//!   [`write_all_atomic`]: several files, all or none;
+//!   [`remove_temporaries`]: for a signal handler, nothing left behind);
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
 pub mod device;
@@ -38,7 +40,9 @@ mod svg;
 mod template;
 
 pub use animate::{animated_svg, FRAME_SECONDS};
-pub use atomic::{check_output_folder, write_atomic};
+pub use atomic::{
+    check_output_folder, remove_temporaries, write_all_atomic, write_atomic, STALE_AFTER,
+};
 pub use dump::path_dump;
 pub use number::{grouped, write_number};
 pub use obj::to_obj;
