@@ -28,7 +28,9 @@
 //!   most used colour (ties to the first seen), then each time the colour
 //!   farthest from every centre chosen so far (maximin), then weighted
 //!   Lloyd steps (each centre to the use-weighted mean of its colours,
-//!   each colour to its nearest centre) until nothing moves. Maximin
+//!   each colour to its nearest centre) until nothing moves, at most 32
+//!   rounds and fewer when colours times pens is very large (100,000
+//!   colours into 999 pens), so that the work stays bounded. Maximin
 //!   rather than "the N most used colours" because a drawing's most used
 //!   colours are often shades of one hue, which would leave another hue
 //!   without a pen of its own; k-means rather than merging the two nearest
