@@ -1,7 +1,7 @@
 //! `moyo fill` through the binary: every pattern on a drawing of its own,
 //! the input's layer kept byte for byte beside the fill's new one, the PNG
-//! preview, seeds, pens from colours (`--pens`, `--single-layer`), and bad input or options failing with `error:` and
-//! leaving no file behind.
+//! preview, seeds, pens from colours (`--pens`, `--single-layer`), and bad
+//! input or options failing with `error:` and leaving no file behind.
 
 use std::fs;
 use std::path::Path;

@@ -1,8 +1,9 @@
 //! Paths to pens, and the scene: one bucket of paths per top-level layer
-//! (with the layer label's pen number) or per colour, documentation layers
-//! kept apart and numbered after the plotted pens; then one scene layer
-//! per bucket, pens with their most common colour and width, and ids
-//! unique in the scene.
+//! (with the layer label's pen number), per colour or cluster of colours
+//! (k-means in OKLab, at most a given number of pens), or one for
+//! everything, documentation layers kept apart and numbered after the
+//! plotted pens, no pen past 999; then one scene layer per bucket, pens
+//! with their most common colour and width, and ids unique in the scene.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
