@@ -1,7 +1,7 @@
 //! `moyo fill` through the binary: every pattern on a drawing of its own,
 //! the input's layer kept byte for byte beside the fill's new one, the PNG
-//! preview, seeds, and bad input or options failing with `error:` and
-//! leaving no file behind.
+//! preview, seeds, pens from colours (`--pens`, `--single-layer`), and bad
+//! input or options failing with `error:` and leaving no file behind.
 
 use std::fs;
 use std::path::Path;
@@ -331,4 +331,36 @@ fn a_graphviz_graph_is_filled_in_its_shapes_not_over_its_page() {
             });
     }
     assert!(dots >= 10, "{dots} dots: {stderr}");
+}
+
+#[test]
+fn pens_from_colours_follow_pens_and_single_layer() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    fs::write(
+        dir.path().join("shapes.svg"),
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+<rect x="10" y="10" width="30" height="30" fill="#ff0000"/>
+<rect x="50" y="10" width="30" height="30" fill="#f00010"/>
+<rect x="10" y="50" width="30" height="30" fill="#0000ff"/></svg>"##,
+    )
+    .unwrap();
+    let labels = |args: &[&str]| {
+        moyo(&dir)
+            .args(["fill", "shapes.svg", "-o", "out.svg"])
+            .args(args)
+            .assert()
+            .success();
+        let svg = fs::read_to_string(dir.path().join("out.svg")).unwrap();
+        svg.split("inkscape:label=\"")
+            .skip(1)
+            .map(|rest| rest[..rest.find('"').unwrap()].to_string())
+            .collect::<Vec<_>>()
+    };
+    // The two reds share a pen; the fill comes on the next.
+    assert_eq!(
+        labels(&["--pens", "2"]),
+        ["1 #ff0000", "2 #0000ff", "3 fill"]
+    );
+    assert_eq!(labels(&["--single-layer"]), ["1 #ff0000", "2 fill"]);
+    assert_eq!(labels(&[]).len(), 4, "three colours, three pens");
 }

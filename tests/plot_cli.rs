@@ -1,7 +1,8 @@
 //! `moyo plot` and `moyo stats` through the binary: formats, stages, stats
 //! JSON, and bad input leaving no output file; AxiDraw documentation layers
 //! (`%` names) kept in the colour preview and left out of everything
-//! plotted, the SVG included; and real
+//! plotted, the SVG included; pens from many colours merged (`--pens`,
+//! `--single-layer`); and real
 //! interpreters (pygcode, hp2xx) reading our G-code and HPGL, when
 //! `MOYO_PYTHON` and `MOYO_HP2XX` name them (`.ci/run` sets both).
 
@@ -286,6 +287,69 @@ fn output_format_follows_the_extension() {
         .success();
     let h = fs::read_to_string(dir.path().join("hem.plt")).unwrap();
     assert!(h.starts_with("IN;") && h.contains("SP2;") && h.contains("PD"));
+}
+
+/// A directory holding `forty.svg`: 40 strokes in 40 colours, no layers.
+fn with_forty_colours() -> TempDir {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    fs::copy(
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/fixtures/import/forty_colours.svg"
+        ),
+        dir.path().join("forty.svg"),
+    )
+    .unwrap();
+    dir
+}
+
+#[test]
+fn many_colours_merge_into_at_most_eight_pens_unless_told() {
+    let dir = with_forty_colours();
+    moyo(&dir)
+        .args(["plot", "forty.svg", "-o", "out.hpgl"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(
+            "warning: forty.svg: 40 colours merged into 8 pens by nearest colour (OKLab); \
+             --pens N to choose, --pens 0 for one pen per colour up to 999",
+        ));
+    let h = fs::read_to_string(dir.path().join("out.hpgl")).unwrap();
+    let mut pens: Vec<u32> = h
+        .split(';')
+        .filter_map(|c| c.trim().strip_prefix("SP")?.parse().ok())
+        .filter(|&n| n > 0)
+        .collect();
+    pens.sort_unstable();
+    pens.dedup();
+    assert_eq!(pens, (1..=8).collect::<Vec<_>>(), "{h}");
+
+    let layers = |args: &[&str]| {
+        let out = moyo(&dir)
+            .args(["stats", "forty.svg", "--json"])
+            .args(args)
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let s: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(number(&s, "paths"), 40.0);
+        s["layers"].as_array().expect("layers").len()
+    };
+    assert_eq!(layers(&["--pens", "3"]), 3);
+    assert_eq!(layers(&["--single-layer"]), 1);
+    assert_eq!(layers(&["--pens", "0"]), 40);
+    moyo(&dir)
+        .args(["stats", "forty.svg", "--pens", "3", "--single-layer"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("cannot be used with"));
+    moyo(&dir)
+        .args(["stats", "forty.svg", "--pens", "1000"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("1000 is not in 0..=999"));
 }
 
 #[test]

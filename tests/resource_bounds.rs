@@ -156,11 +156,13 @@ fn a_scene_past_its_segment_budget_stops_naming_the_limit() {
         ));
 }
 
-/// 100,000 stroke colours, one pen each: every stage that goes pen by pen
-/// once scanned every layer for every pen (more than 120 s for `stats`);
-/// now they group the layers once. Ten times as many colours would pass
-/// the import's limit of a million elements, so this is the most a file
-/// can ask for.
+/// 100,000 stroke colours: one pen each is refused (past pen 999), so they
+/// are clustered into the most pens a plot may have, 999. Every stage that
+/// goes pen by pen once scanned every layer for every pen (more than 120 s
+/// for `stats` when each colour was a pen); now they group the layers
+/// once, and the clustering's work is bounded. Ten times as many colours
+/// would pass the import's limit of a million elements, so this is the
+/// most a file can ask for.
 #[test]
 fn a_hundred_thousand_colours_are_plotted_pen_by_pen_in_one_pass() {
     let dir = tempdir();
@@ -175,14 +177,26 @@ fn a_hundred_thousand_colours_are_plotted_pen_by_pen_in_one_pass() {
         .collect();
     fs::write(dir.path().join("colours.svg"), svg(&body)).unwrap();
     moyo(&dir)
-        .args(["stats", "colours.svg", "--json"])
+        .args(["stats", "colours.svg", "--json", "--pens", "999"])
         .assert()
         .success()
-        .stdout(predicate::str::contains("\"paths\": 100000"));
+        .stdout(predicate::str::contains("\"paths\": 100000"))
+        .stderr(predicate::str::contains(
+            "100,000 colours merged into 999 pens",
+        ));
+    moyo(&dir)
+        .args(["stats", "colours.svg", "--pens", "0"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "one pen per colour would make 100,000 pens, more than the 999",
+        ));
     moyo(&dir)
         .args([
             "plot",
             "colours.svg",
+            "--pens",
+            "999",
             "--merge",
             "--sort",
             "-o",
@@ -191,11 +205,16 @@ fn a_hundred_thousand_colours_are_plotted_pen_by_pen_in_one_pass() {
         .assert()
         .success();
     let gcode = fs::read_to_string(dir.path().join("out.gcode")).unwrap();
+    // Every stroke drawn; --merge joins the few of one pen that meet end
+    // to end (0.05 mm apart), which it could not when each had a pen.
+    let strokes = gcode.matches("M3 S1000").count();
+    assert!((99_900..=100_000).contains(&strokes), "{strokes} strokes");
     assert_eq!(
-        gcode.matches("M3 S1000").count(),
-        100_000,
-        "every stroke drawn"
+        gcode.matches("M0 ; load pen").count(),
+        999,
+        "one change per pen"
     );
+    assert!(!gcode.contains("load pen 1000 "), "no pen past 999");
 }
 
 /// A description that names a FIFO (someone else's description, a file

@@ -5,9 +5,8 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 
-use super::plot::load_svg;
+use super::plot::{load_svg, PenArgs};
 use super::{check_outputs, warn_outside_page, CliError, Named};
-use moyo::input::ImportOptions;
 use moyo::output::write_all_atomic;
 use moyo::project::{self, FillJob, FillPattern};
 
@@ -49,6 +48,8 @@ pub(crate) struct FillArgs {
     /// Output SVG: the input's layers as they were, plus the fill's.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    pens: PenArgs,
     /// What the fill draws.
     #[arg(long, value_enum, default_value = "voronoi")]
     pattern: PatternArg,
@@ -165,7 +166,7 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
     let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
     outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
     check_outputs(&inputs, &outputs)?;
-    let imported = load_svg(&args.input, &ImportOptions::DEFAULT)?;
+    let imported = load_svg(&args.input, &args.pens.import_options())?;
     let job = args.job()?;
     // Everything is computed before anything is written.
     let filled = project::fill_scene(imported.scene, &job)

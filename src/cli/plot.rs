@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 
 use super::{check_outputs, stdout_error, warn_outside_page, CliError, Named};
-use moyo::input::{ImportOptions, Imported};
+use moyo::input::{ImportOptions, Imported, PenGrouping};
 use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
 use moyo::output::gcode::{GcodeOptions, Origin};
 use moyo::output::hpgl::{CutterOptions, HpglOptions};
@@ -37,6 +37,8 @@ pub(crate) struct PlotArgs {
     /// Output file.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    pens: PenArgs,
     /// Output format; by default the device's (--device, or a moyo SVG's
     /// own), else from the output's extension (.svg; .gcode, .nc, .ngc, .g
     /// → gcode; .hpgl, .plt, .hgl → hpgl). Another extension needs it.
@@ -271,7 +273,36 @@ pub(crate) struct StatsArgs {
     #[arg(long)]
     json: bool,
     #[command(flatten)]
+    pens: PenArgs,
+    #[command(flatten)]
     speeds: SpeedArgs,
+}
+
+/// How an SVG's paths become pens: `--pens`, `--single-layer`.
+#[derive(Args)]
+pub(crate) struct PenArgs {
+    /// Without Inkscape layers, pens come from colours: at most N (0–999),
+    /// colours beyond merged by nearest colour; 0 for one pen per colour.
+    /// A file with layers keeps its layers as pens [default: 8]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..=999))]
+    pens: Option<u32>,
+    /// Everything on one pen (pen 1), layers and colours ignored;
+    /// documentation (%) layers stay apart.
+    #[arg(long, conflicts_with = "pens")]
+    single_layer: bool,
+}
+
+impl PenArgs {
+    /// The import options these flags ask for.
+    pub(crate) fn import_options(&self) -> ImportOptions {
+        let options = ImportOptions::DEFAULT
+            .with_max_pens(self.pens.unwrap_or(ImportOptions::DEFAULT_MAX_PENS));
+        if self.single_layer {
+            options.with_pens(PenGrouping::Single)
+        } else {
+            options
+        }
+    }
 }
 
 /// Reads the SVG at `path`, telling what its import left out.
@@ -382,7 +413,8 @@ impl PlotArgs {
         Ok(PlotJob::new(format)
             .with_stages(self.plot_options())
             .with_silhouettes(self.silhouettes)
-            .with_preview(preview))
+            .with_preview(preview)
+            .with_import(self.pens.import_options()))
     }
 
     /// The format asked for: --format, else the output's extension when
@@ -634,7 +666,7 @@ struct Figures {
 /// `moyo stats`.
 pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     let speeds = args.speeds.speeds()?;
-    let imported = load_svg(&args.input, &ImportOptions::DEFAULT)?;
+    let imported = load_svg(&args.input, &args.pens.import_options())?;
     let s = plot::stats(&imported.scene, &speeds);
     let mut out = std::io::stdout().lock();
     if args.json {

@@ -16,10 +16,35 @@
 //!   become one scene layer and pen each. The pen number is the leading
 //!   integer of `inkscape:label` (`"3 blue"` → pen 3 named `blue`, the
 //!   convention of moyo, AxiDraw and vpype); layers without one get the
-//!   smallest number no other layer claims. Without layers, paths are
-//!   grouped by stroke colour (fill colour when unstroked): one pen per
-//!   colour, numbered in order of first appearance. A pen's colour and width
-//!   are the most common stroke colour and drawn stroke width of its paths.
+//!   smallest number no other layer claims. Without layers
+//!   ([`PenGrouping::Auto`]), or always ([`PenGrouping::StrokeColor`]),
+//!   paths are grouped by stroke colour (fill colour when unstroked): one
+//!   pen per colour, numbered in order of first appearance, but at most
+//!   [`ImportOptions::max_pens`] pens (8 by default): when there are more
+//!   colours, they are clustered into that many pens by nearest colour in
+//!   OKLab (Björn Ottosson's perceptual space; an sRGB to OKLab conversion
+//!   of a few lines), and one warning says how many colours went into how
+//!   many pens. The clustering is k-means with a deterministic start: the
+//!   most used colour (ties to the first seen), then each time the colour
+//!   farthest from every centre chosen so far (maximin), then weighted
+//!   Lloyd steps (each centre to the use-weighted mean of its colours,
+//!   each colour to its nearest centre) until nothing moves, at most 32
+//!   rounds and fewer when colours times pens is very large (100,000
+//!   colours into 999 pens), so that the work stays bounded. Maximin
+//!   rather than "the N most used colours" because a drawing's most used
+//!   colours are often shades of one hue, which would leave another hue
+//!   without a pen of its own; k-means rather than merging the two nearest
+//!   clusters until N remain because it stays linear in the colours (a
+//!   logo can have thousands). `max_pens` 0 keeps one pen per colour and
+//!   refuses a file with more than 999. [`PenGrouping::Single`] puts every
+//!   plotted path on pen 1. A file with layers is not clustered — its
+//!   layers are its pens — but it may not need pen numbers past 999 (more
+//!   than 999 layers, or 999 numbered ones and more): that is an error, not
+//!   a silent renumbering, since a layer's number is the pen its author
+//!   chose. A pen's colour and width are the most common stroke colour and
+//!   drawn stroke width of its paths (for a merged pen, its most used
+//!   colour); a pen from layers that draws several stroke colours says so
+//!   in a warning.
 //! - **Layer names**, following AxiDraw's layer control:
 //!   - Leading whitespace is ignored. A label whose first character is then
 //!     `%` marks a *documentation layer*: it is imported whole (its
@@ -178,6 +203,9 @@ pub enum PenGrouping {
     /// Always by stroke colour (fill colour for unstroked paths), ignoring
     /// layers.
     StrokeColor,
+    /// Every plotted path on pen 1, layers and colours ignored;
+    /// documentation layers (`%`) still apart (vpype's `--single-layer`).
+    Single,
 }
 
 /// Options of [`import_svg`].
@@ -190,14 +218,32 @@ pub struct ImportOptions {
     pub px_per_inch: f64,
     /// How paths are assigned to pens.
     pub pens: PenGrouping,
+    /// When pens come from colours: the most pens, colours beyond being
+    /// merged by nearest colour (see the module documentation); 0 for one
+    /// pen per colour, never merged. At most 999. Pens from layers ignore
+    /// it: a file's layers are its pens.
+    pub max_pens: u32,
 }
 
 impl ImportOptions {
-    /// 96 px per inch, pens from layers when there are any.
+    /// 96 px per inch, pens from layers when there are any, otherwise
+    /// from colours, at most [`DEFAULT_MAX_PENS`](Self::DEFAULT_MAX_PENS).
     pub const DEFAULT: ImportOptions = ImportOptions {
         px_per_inch: 96.0,
         pens: PenGrouping::Auto,
+        max_pens: ImportOptions::DEFAULT_MAX_PENS,
     };
+
+    /// The most pens made from colours unless told otherwise: a plotter's
+    /// pen carousel, or a person's patience for changing pens.
+    pub const DEFAULT_MAX_PENS: u32 = 8;
+
+    /// These options with at most `max_pens` pens from colours (0: one per
+    /// colour).
+    pub const fn with_max_pens(mut self, max_pens: u32) -> ImportOptions {
+        self.max_pens = max_pens;
+        self
+    }
 
     /// These options with `px_per_inch` pixels per inch.
     pub const fn with_px_per_inch(mut self, px_per_inch: f64) -> ImportOptions {
@@ -271,6 +317,12 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
         return Err(Error::invalid(
             "px_per_inch",
             format!("must be a positive number, got {}", options.px_per_inch),
+        ));
+    }
+    if options.max_pens > 999 {
+        return Err(Error::invalid(
+            "max_pens",
+            format!("must be 0 to 999, got {}", options.max_pens),
         ));
     }
     let doc = parse_xml(text)?;
@@ -350,8 +402,26 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
         PenGrouping::Auto if !source.layers.is_empty() => {
             (pens::by_layer(&source.layers, &walked, &mut warnings), true)
         }
-        _ => (pens::by_color(&walked.drawn, &source.layers), false),
+        PenGrouping::Single => (
+            pens::by_color(
+                &walked.drawn,
+                &source.layers,
+                pens::ColorPens::Single,
+                &mut warnings,
+            )?,
+            false,
+        ),
+        _ => (
+            pens::by_color(
+                &walked.drawn,
+                &source.layers,
+                pens::ColorPens::AtMost(options.max_pens),
+                &mut warnings,
+            )?,
+            false,
+        ),
     };
+    pens::check_pen_numbers(&buckets)?;
     let scene = pens::assemble(
         page,
         buckets,

@@ -1,13 +1,16 @@
 //! Paths to pens, and the scene: one bucket of paths per top-level layer
-//! (with the layer label's pen number) or per colour, documentation layers
-//! kept apart and numbered after the plotted pens; then one scene layer
-//! per bucket, pens with their most common colour and width, and ids
-//! unique in the scene.
+//! (with the layer label's pen number), per colour or cluster of colours
+//! (k-means in OKLab, at most a given number of pens), or one for
+//! everything, documentation layers kept apart and numbered after the
+//! plotted pens, no pen past 999; then one scene layer per bucket, pens
+//! with their most common colour and width, and ids unique in the scene.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use super::scan::LayerSource;
 use super::walk::{Drawn, Walked};
+use crate::error::{Error, Result};
+use crate::output::grouped;
 #[cfg(doc)]
 use crate::scene::LayerCodes;
 use crate::scene::{Color, Group, Layer, Pen, Scene, Style, UniqueIds};
@@ -181,22 +184,46 @@ fn split_label(label: &str) -> (Option<u32>, String) {
     }
 }
 
-/// One bucket per colour (stroke, else fill), pens numbered in order of
-/// first appearance; the paths of each documentation layer (`%` label)
-/// stay apart, in a bucket of their own after the colours. Paint that no
-/// pen draws ([`Drawn::paint_only`]) takes no pen of its own: it goes,
-/// in paint order, with the first pen, whose layer the writer puts behind
-/// the other pens' (the white page behind a graphviz graph is no pen to
-/// load, and must not cover the graph in the preview).
-pub(super) fn by_color(drawn: &[Drawn], layers: &[LayerSource]) -> Vec<Bucket> {
+/// How [`by_color`] turns colours into pens.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum ColorPens {
+    /// One pen per colour, the colours clustered into at most this many
+    /// pens when there are more; 0: no clustering.
+    AtMost(u32),
+    /// Every plotted path on pen 1.
+    Single,
+}
+
+/// One bucket per colour (stroke, else fill), or per cluster of colours
+/// ([`ColorPens`]), pens numbered in order of first appearance; the paths
+/// of each documentation layer (`%` label) stay apart, in a bucket of
+/// their own after the colours. Paint that no pen draws
+/// ([`Drawn::paint_only`]) takes no pen of its own: it goes, in paint
+/// order, with the first pen, whose layer the writer puts behind the other
+/// pens' (the white page behind a graphviz graph is no pen to load, and
+/// must not cover the graph in the preview).
+///
+/// # Errors
+///
+/// [`Error::Invalid`] when one pen per colour (`AtMost(0)`) would number
+/// pens past 999.
+pub(super) fn by_color(
+    drawn: &[Drawn],
+    layers: &[LayerSource],
+    policy: ColorPens,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Bucket>> {
     let plotted = |d: &Drawn| d.layer.is_none_or(|i| layers[i].plotted);
     let color_of = |d: &Drawn| d.stroke.map(|(c, _)| c).or(d.fill);
     let first_pen = drawn
         .iter()
         .filter(|d| !d.paint_only && plotted(d))
         .find_map(color_of);
-    let mut buckets: Vec<Bucket> = Vec::new();
+    // The distinct colours in order of first appearance, with their use
+    // (paths), and each plotted path's colour (index into `colors`).
+    let mut colors: Vec<(Color, usize)> = Vec::new();
     let mut index: HashMap<u32, usize> = HashMap::new();
+    let mut plotted_paths: Vec<(usize, usize)> = Vec::new();
     // Documentation layer (index into `layers`) → its paths.
     let mut unplotted: BTreeMap<usize, Vec<usize>> = Default::default();
     for (k, d) in drawn.iter().enumerate() {
@@ -211,17 +238,73 @@ pub(super) fn by_color(drawn: &[Drawn], layers: &[LayerSource]) -> Vec<Bucket> {
             Some(first) if d.paint_only => first,
             _ => own,
         };
-        let i = *index.entry(color_key(color)).or_insert_with(|| {
+        let c = *index.entry(color_key(color)).or_insert_with(|| {
+            colors.push((color, 0));
+            colors.len() - 1
+        });
+        colors[c].1 += 1;
+        plotted_paths.push((k, c));
+    }
+    let group_of: Vec<usize> = match policy {
+        ColorPens::Single => vec![0; colors.len()],
+        ColorPens::AtMost(n) if n > 0 && colors.len() > n as usize => {
+            let groups = cluster(&colors, n as usize);
+            let pens = groups.iter().max().map_or(0, |g| g + 1);
+            warnings.push(format!(
+                "{} colours merged into {} by nearest colour (OKLab); --pens N to \
+                 choose, --pens 0 for one pen per colour up to {}",
+                grouped(colors.len()),
+                if pens == 1 {
+                    "1 pen".to_string()
+                } else {
+                    format!("{pens} pens")
+                },
+                PEN_NUMBERS.end()
+            ));
+            groups
+        }
+        ColorPens::AtMost(_) => {
+            if colors.len() > *PEN_NUMBERS.end() as usize {
+                return Err(Error::invalid(
+                    "pens",
+                    format!(
+                        "one pen per colour would make {} pens, more than the {} a plot \
+                         allows; merge them into fewer (--pens N, N at most {})",
+                        grouped(colors.len()),
+                        PEN_NUMBERS.end(),
+                        PEN_NUMBERS.end()
+                    ),
+                ));
+            }
+            (0..colors.len()).collect()
+        }
+    };
+    // Group → bucket, in order of first appearance (the colours are).
+    let mut bucket_of: HashMap<usize, usize> = HashMap::new();
+    let mut buckets: Vec<Bucket> = Vec::new();
+    for (c, &group) in group_of.iter().enumerate() {
+        bucket_of.entry(group).or_insert_with(|| {
+            // A pen's name is its most used colour, ties to the first seen.
+            let name = group_of
+                .iter()
+                .zip(&colors)
+                .filter(|(&g, _)| g == group)
+                .map(|(_, &(color, uses))| (color, uses))
+                .fold(colors[c], |best, x| if x.1 > best.1 { x } else { best })
+                .0
+                .to_string();
             buckets.push(Bucket {
                 pen: buckets.len() as u32 + 1,
-                pen_name: color.to_string(),
-                layer_name: color.to_string(),
+                pen_name: name.clone(),
+                layer_name: name,
                 members: Vec::new(),
                 plotted: true,
             });
             buckets.len() - 1
         });
-        buckets[i].members.push(k);
+    }
+    for (k, c) in plotted_paths {
+        buckets[bucket_of[&group_of[c]]].members.push(k);
     }
     for (i, members) in unplotted {
         let mut bucket = Bucket::unplotted(&layers[i].label);
@@ -229,7 +312,142 @@ pub(super) fn by_color(drawn: &[Drawn], layers: &[LayerSource]) -> Vec<Bucket> {
         buckets.push(bucket);
     }
     number_unplotted(&mut buckets);
-    buckets
+    Ok(buckets)
+}
+
+/// Refuses buckets whose pens are numbered past 999: more layers, or
+/// documentation layers, than a plot has pen numbers for.
+pub(super) fn check_pen_numbers(buckets: &[Bucket]) -> Result<()> {
+    let most = *PEN_NUMBERS.end();
+    match buckets.iter().map(|b| b.pen).max() {
+        Some(top) if top > most => Err(Error::invalid(
+            "svg",
+            format!(
+                "the document's layers need pen numbers up to {}, past the {most} a plot \
+                 allows; merge layers, or read it by colour",
+                grouped(top as usize)
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Lloyd iterations at most; they stop as soon as no colour changes cluster.
+const CLUSTER_ROUNDS: usize = 32;
+
+/// Colour-to-centre distances the Lloyd iterations may compute in all:
+/// 100,000 colours into 999 pens would otherwise take seconds a round.
+/// Fewer rounds leave the clusters a little less even, never wrong: every
+/// colour is still on the pen of its nearest centre.
+const CLUSTER_BUDGET: usize = 200_000_000;
+
+/// Clusters `colors` (each with its use) into at most `n` groups by
+/// nearest colour in OKLab, deterministically: the first centre is the
+/// most used colour (ties to the first seen), each next one the colour
+/// farthest from every centre so far (maximin; ties to the more used, then
+/// the first seen); then weighted k-means (Lloyd) steps move each centre
+/// to the use-weighted mean of its colours. Returns each colour's group,
+/// groups numbered in order of first appearance, with no gaps.
+fn cluster(colors: &[(Color, usize)], n: usize) -> Vec<usize> {
+    let labs: Vec<[f64; 3]> = colors.iter().map(|&(c, _)| oklab(c)).collect();
+    let better = |a: (f64, usize, usize), b: (f64, usize, usize)| {
+        // (distance, use, position): larger distance, larger use, earlier.
+        a.0 > b.0 || (a.0 == b.0 && (a.1 > b.1 || (a.1 == b.1 && a.2 < b.2)))
+    };
+    let mut centres: Vec<[f64; 3]> = Vec::new();
+    let mut nearest = vec![f64::INFINITY; colors.len()];
+    while centres.len() < n {
+        let mut pick: Option<(f64, usize, usize)> = None;
+        for (i, &(_, uses)) in colors.iter().enumerate() {
+            let candidate = (nearest[i], uses, i);
+            if pick.is_none_or(|p| better(candidate, p)) {
+                pick = Some(candidate);
+            }
+        }
+        match pick {
+            Some((d, _, i)) if d > 0.0 => {
+                centres.push(labs[i]);
+                for (near, lab) in nearest.iter_mut().zip(&labs) {
+                    *near = near.min(distance2(lab, &labs[i]));
+                }
+            }
+            // Every colour is a centre already.
+            _ => break,
+        }
+    }
+    let assign = |centres: &[[f64; 3]]| -> Vec<usize> {
+        labs.iter()
+            .map(|lab| {
+                (0..centres.len())
+                    .min_by(|&a, &b| {
+                        distance2(lab, &centres[a]).total_cmp(&distance2(lab, &centres[b]))
+                    })
+                    .unwrap_or(0)
+            })
+            .collect()
+    };
+    let mut groups = assign(&centres);
+    let rounds = (CLUSTER_BUDGET / (colors.len() * centres.len()).max(1)).min(CLUSTER_ROUNDS);
+    for _ in 0..rounds {
+        let mut sums = vec![([0.0; 3], 0.0); centres.len()];
+        for ((lab, &g), &(_, uses)) in labs.iter().zip(&groups).zip(colors) {
+            let w = uses as f64;
+            for (s, v) in sums[g].0.iter_mut().zip(lab) {
+                *s += v * w;
+            }
+            sums[g].1 += w;
+        }
+        for (centre, (sum, weight)) in centres.iter_mut().zip(sums) {
+            // A centre left without colours stays where it is.
+            if weight > 0.0 {
+                *centre = sum.map(|s| s / weight);
+            }
+        }
+        let next = assign(&centres);
+        if next == groups {
+            break;
+        }
+        groups = next;
+    }
+    // Renumber by first appearance.
+    let mut renumbered: HashMap<usize, usize> = HashMap::new();
+    groups
+        .into_iter()
+        .map(|g| {
+            let k = renumbered.len();
+            *renumbered.entry(g).or_insert(k)
+        })
+        .collect()
+}
+
+fn distance2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
+/// An sRGB colour in OKLab (L, a, b), after Björn Ottosson, "A perceptual
+/// color space for image processing" (2020,
+/// <https://bottosson.github.io/posts/oklab/>): the sRGB transfer curve
+/// undone, linear RGB to LMS cone responses by his matrix `M1`, a cube
+/// root, then `M2` to L, a, b. Euclidean distance there is close to a
+/// perceived colour difference, far better than in RGB.
+fn oklab(c: Color) -> [f64; 3] {
+    let linear = |v: u8| {
+        let v = f64::from(v) / 255.0;
+        if v <= 0.04045 {
+            v / 12.92
+        } else {
+            ((v + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let (r, g, b) = (linear(c.r), linear(c.g), linear(c.b));
+    let l = (0.412_221_470_8 * r + 0.536_332_536_3 * g + 0.051_445_992_9 * b).cbrt();
+    let m = (0.211_903_498_2 * r + 0.680_699_545_1 * g + 0.107_396_956_6 * b).cbrt();
+    let s = (0.088_302_461_9 * r + 0.281_718_837_6 * g + 0.629_978_700_5 * b).cbrt();
+    [
+        0.210_454_255_3 * l + 0.793_617_785_0 * m - 0.004_072_046_8 * s,
+        1.977_998_495_1 * l - 2.428_592_205_0 * m + 0.450_593_709_9 * s,
+        0.025_904_037_1 * l + 0.782_771_766_2 * m - 0.808_675_766_0 * s,
+    ]
 }
 
 fn color_key(c: Color) -> u32 {
@@ -287,7 +505,8 @@ pub(super) fn assemble(
         let width =
             most_common(strokes().map(|(_, w)| w), f64::to_bits).unwrap_or(DEFAULT_PEN_WIDTH);
         let colors: HashSet<u32> = strokes().map(|(c, _)| color_key(c)).collect();
-        if colors.len() > 1 {
+        // Pens from colours say once, on import, how colours were merged.
+        if stacked && colors.len() > 1 {
             warnings.push(format!(
                 "pen {number} draws {} stroke colours; it takes the most common one, {color}",
                 colors.len()
@@ -652,5 +871,173 @@ mod tests {
                 ("%  spaced", 4, false, 1),
             ]
         );
+    }
+
+    /// A stroked line per colour, `#rrggbb` each, in paint order.
+    fn lines(colors: &[String]) -> String {
+        colors
+            .iter()
+            .enumerate()
+            .map(|(i, c)| format!(r#"<path d="M0 {i} L10 {i}" stroke="{c}" fill="none"/>"#))
+            .collect()
+    }
+
+    fn pens_of(imported: &super::super::Imported) -> Vec<(u32, String, usize)> {
+        let scene = &imported.scene;
+        scene
+            .pens
+            .iter()
+            .map(|p| {
+                (
+                    p.number,
+                    p.color.to_string(),
+                    scene.pen_stats(p.number).paths,
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn colours_beyond_the_cap_merge_into_the_nearest() {
+        // Ten shades of red, then ten of blue; the most used red is drawn
+        // twice.
+        let mut colors: Vec<String> = (0..10)
+            .map(|i| format!("#{:02x}{:02x}00", 200 + 5 * i, 3 * i))
+            .chain((0..10).map(|i| format!("#00{:02x}{:02x}", 4 * i, 200 + 5 * i)))
+            .collect();
+        colors.insert(5, "#e61200".to_string());
+        let text = doc(&lines(&colors));
+        let two = ImportOptions::DEFAULT.with_max_pens(2);
+        let imported = import_svg(&text, &two).unwrap();
+        assert_eq!(
+            pens_of(&imported),
+            [(1, "#e61200".into(), 11), (2, "#0000c8".into(), 10)]
+        );
+        assert_eq!(
+            imported.warnings,
+            [
+                "20 colours merged into 2 pens by nearest colour (OKLab); --pens N to choose, \
+              --pens 0 for one pen per colour up to 999"
+            ]
+        );
+        // The same every time.
+        assert_eq!(import_svg(&text, &two).unwrap(), imported);
+
+        // The two nearest colours share a pen; a third stays apart.
+        let imported = import_svg(
+            &doc(&lines(&[
+                "#0000ff".into(),
+                "#ff0000".into(),
+                "#f00000".into(),
+            ])),
+            &two,
+        )
+        .unwrap();
+        assert_eq!(
+            pens_of(&imported),
+            [(1, "#0000ff".into(), 1), (2, "#ff0000".into(), 2)]
+        );
+
+        // The default cap: 8 pens; 0 keeps one pen per colour.
+        let imported = import(&text);
+        assert_eq!(imported.scene.pens.len(), 8);
+        assert!(imported.warnings[0].starts_with("20 colours merged into 8 pens"));
+        let imported = import_svg(&text, &ImportOptions::DEFAULT.with_max_pens(0)).unwrap();
+        assert_eq!(imported.scene.pens.len(), 20);
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        // No more colours than the cap: nothing merged, nothing said.
+        let imported = import_svg(&text, &ImportOptions::DEFAULT.with_max_pens(20)).unwrap();
+        assert_eq!(imported.scene.pens.len(), 20);
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    }
+
+    #[test]
+    fn pens_never_pass_999() {
+        let colors: Vec<String> = (0..1200)
+            .map(|i| format!("#{:02x}{:02x}{:02x}", i % 256, i / 256, 128))
+            .collect();
+        let text = doc(&lines(&colors));
+        let e = import_svg(&text, &ImportOptions::DEFAULT.with_max_pens(0)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "pens: one pen per colour would make 1,200 pens, more than the 999 a plot \
+             allows; merge them into fewer (--pens N, N at most 999)"
+        );
+        let imported = import(&text);
+        assert_eq!(imported.scene.pens.len(), 8);
+        assert!(imported.warnings[0].starts_with("1,200 colours merged into 8 pens"));
+        let e = import_svg(&text, &ImportOptions::DEFAULT.with_max_pens(1000)).unwrap_err();
+        assert_eq!(e.to_string(), "max_pens: must be 0 to 999, got 1000");
+
+        // Layers are not merged; past 999 they are refused.
+        let layers: String = (0..1000)
+            .map(|i| {
+                format!(
+                    r#"<g inkscape:groupmode="layer" inkscape:label="L{i}">
+                       <path d="M0 0 L1 1" stroke="black"/></g>"#
+                )
+            })
+            .collect();
+        let e = import_svg(&doc(&layers), &ImportOptions::DEFAULT).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("pen numbers up to 1,000, past the 999"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn layers_are_pens_whatever_the_cap() {
+        let layers: String = (0..10)
+            .map(|i| {
+                format!(
+                    r##"<g inkscape:groupmode="layer" inkscape:label="{} ink">
+                       <path d="M0 {i} L1 {i}" stroke="#{:02x}0000"/></g>"##,
+                    i + 1,
+                    20 * i
+                )
+            })
+            .collect();
+        let imported = import_svg(&doc(&layers), &ImportOptions::DEFAULT.with_max_pens(2)).unwrap();
+        assert_eq!(imported.scene.pens.len(), 10);
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    }
+
+    #[test]
+    fn single_layer_puts_every_plotted_path_on_pen_1() {
+        let body = r##"<g inkscape:groupmode="layer" inkscape:label="3 red">
+                 <path d="M0 0 L1 0" stroke="red"/><path d="M0 1 L1 1" stroke="red"/></g>
+               <g inkscape:groupmode="layer" inkscape:label="%notes">
+                 <path d="M0 3 L1 3" stroke="gray"/></g>
+               <path d="M0 2 L1 2" stroke="blue"/>"##;
+        let imported = import_svg(
+            &doc(body),
+            &ImportOptions::DEFAULT.with_pens(PenGrouping::Single),
+        )
+        .unwrap();
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+        let layers: Vec<(&str, u32, bool, usize)> = imported
+            .scene
+            .layers
+            .iter()
+            .map(|l| {
+                let n = l.content.children.len();
+                (l.name.as_str(), l.pen, l.is_plotted(), n)
+            })
+            .collect();
+        assert_eq!(layers, [("#ff0000", 1, true, 3), ("%notes", 2, false, 1)]);
+        assert_eq!(imported.scene.pens[0].color, Color::rgb(255, 0, 0));
+    }
+
+    #[test]
+    fn oklab_matches_ottosson() {
+        // His reference values: white is L 1, a and b 0; sRGB red is
+        // (0.628, 0.225, 0.126).
+        let white = super::oklab(Color::rgb(255, 255, 255));
+        assert!((white[0] - 1.0).abs() < 1e-6 && white[1].abs() < 1e-6 && white[2].abs() < 1e-6);
+        let red = super::oklab(Color::rgb(255, 0, 0));
+        for (got, want) in red.iter().zip([0.627_955, 0.224_863, 0.125_846]) {
+            assert!((got - want).abs() < 1e-5, "{red:?}");
+        }
     }
 }
