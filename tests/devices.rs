@@ -338,6 +338,19 @@ header = ["; my router"]
     let g = fs::read_to_string(dir.path().join("design.gcode")).unwrap();
     assert!(g.contains("; my router\nG0 Z3\n"), "{g}");
     assert!(g.contains(" F4000\n"), "+S50 of grbl-z's 8000: {g}");
+    // An SVG written from it, or HPGL, takes nothing from a G-code device.
+    moyo(&dir)
+        .args(["plot", "design.svg", "--sort", "-o", "sorted.svg"])
+        .assert()
+        .success();
+    let out = moyo(&dir)
+        .args(["plot", "design.svg", "-o", "design.plt"])
+        .assert()
+        .success()
+        .get_output()
+        .stderr
+        .clone();
+    assert!(String::from_utf8_lossy(&out).contains("its [device] is for another language"));
     // --device wins over the scene's.
     moyo(&dir)
         .args([

@@ -601,7 +601,25 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     let speeds = args.speeds.speeds()?;
     let device = match &args.device {
         Some(arg) => Some(device_arg(arg)?),
-        None => embedded_device(&args.input)?,
+        // The drawing's own machine counts only for the language it
+        // speaks: an SVG written from it, or the other language asked
+        // for, takes no device from it.
+        None => embedded_device(&args.input)?.filter(|d| {
+            let fits = matches!(
+                (args.format(), d),
+                (None, _)
+                    | (Some(OutputFormat::Gcode), Device::Gcode(_))
+                    | (Some(OutputFormat::Hpgl), Device::Hpgl(_))
+            );
+            if !fits && args.format() != Some(OutputFormat::Svg) {
+                eprintln!(
+                    "warning: {}: its [device] is for another language than the output's; \
+                     the output's defaults are used",
+                    args.input.display()
+                );
+            }
+            fits
+        }),
     };
     let job = args.job(device)?;
     job.stages
