@@ -45,7 +45,8 @@ fn with_two_pens() -> TempDir {
 /// or Z is at most 0.6 (Z machines: `z` as the second argument). Prints
 /// JSON: strokes, the length drawn (arcs along their circle), rapid moves
 /// with the pen down, pauses (`M0`) and pauses with the pen down, the
-/// pen-down length between pauses (`runs`), and the pen at the end.
+/// pen-down length between pauses (`runs`), the box of the drawn moves'
+/// ends (machine mm), and the pen at the end.
 const READ_GCODE: &str = r#"
 import json, math, re, sys
 from pygcode import Line, Machine
@@ -59,6 +60,7 @@ def down():
 
 strokes = drawn = rapid_down = pauses = pauses_down = arcs = 0
 runs = [0.0]
+box = None
 expected = 0
 for number, raw in enumerate(open(path, encoding="utf-8"), 1):
     text = raw.rstrip("\n")
@@ -113,14 +115,17 @@ for number, raw in enumerate(open(path, encoding="utf-8"), 1):
             step = math.hypot(x1 - x0, y1 - y0)
         drawn += step
         runs[-1] += step
+        for x, y in ((x0, y0), (x1, y1)):
+            box = [x, y, x, y] if box is None else [
+                min(box[0], x), min(box[1], y), max(box[2], x), max(box[3], y)]
 print(json.dumps({
     "strokes": strokes, "drawn_mm": drawn, "rapid_down": rapid_down,
     "pauses": pauses, "pauses_down": pauses_down, "arcs": arcs,
-    "runs": runs, "pen_up_at_end": not down(),
+    "runs": runs, "box": box, "pen_up_at_end": not down(),
 }))
 "#;
 
-fn read_gcode(python: &std::ffi::OsStr, gcode: &Path, pen: &str) -> serde_json::Value {
+pub(crate) fn read_gcode(python: &std::ffi::OsStr, gcode: &Path, pen: &str) -> serde_json::Value {
     let out = std::process::Command::new(python)
         .arg("-c")
         .arg(READ_GCODE)

@@ -13,6 +13,8 @@ use assert_cmd::Command;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
+use crate::devices::read_gcode;
+
 fn moyo(dir: &TempDir) -> Command {
     let mut cmd = Command::cargo_bin("moyo").expect("the moyo binary is built");
     cmd.current_dir(dir.path());
@@ -759,70 +761,6 @@ pub(crate) fn interpreter(var: &str) -> Option<std::ffi::OsString> {
     value
 }
 
-/// Reads a G-code program with pygcode (a real G-code parser and machine
-/// model): every line must parse, with no stray words; pen state follows
-/// the spindle (`M3` down, `M5` up). Prints JSON: the number of pen-down
-/// strokes, the length drawn, the box of the drawn points (machine mm), the
-/// number of rapid moves with the pen down, and whether the pen is up at
-/// the end.
-const PYGCODE_CHECK: &str = r#"
-import json, math, sys
-from pygcode import Line, Machine
-
-machine = Machine()
-strokes = 0
-drawn = 0.0
-box = None
-rapid_down = 0
-lines = 0
-for number, text in enumerate(open(sys.argv[1], encoding="utf-8"), 1):
-    try:
-        line = Line(text.rstrip("\n"))
-    except Exception as e:
-        sys.exit("line %d %r: %s" % (number, text, e))
-    if line.block.modal_params:
-        sys.exit("line %d %r: words without a command: %s" % (number, text, line.block.modal_params))
-    was_down = str(machine.mode.spindle).startswith("M03")
-    x0, y0 = machine.pos.X, machine.pos.Y
-    machine.process_block(line.block)
-    down = str(machine.mode.spindle).startswith("M03")
-    x1, y1 = machine.pos.X, machine.pos.Y
-    if down and not was_down:
-        strokes += 1
-    if was_down and down and (x0, y0) != (x1, y1):
-        if any(str(g).startswith("G00") for g in line.block.gcodes):
-            rapid_down += 1
-        drawn += math.hypot(x1 - x0, y1 - y0)
-        for x, y in ((x0, y0), (x1, y1)):
-            box = [x, y, x, y] if box is None else [
-                min(box[0], x), min(box[1], y), max(box[2], x), max(box[3], y)]
-    lines += 1
-print(json.dumps({
-    "lines": lines,
-    "strokes": strokes,
-    "drawn_mm": drawn,
-    "box": box,
-    "rapid_down": rapid_down,
-    "pen_up_at_end": not str(machine.mode.spindle).startswith("M03"),
-}))
-"#;
-
-fn pygcode_check(python: &std::ffi::OsStr, gcode: &Path) -> serde_json::Value {
-    let out = std::process::Command::new(python)
-        .arg("-c")
-        .arg(PYGCODE_CHECK)
-        .arg(gcode)
-        .output()
-        .expect("python runs");
-    assert!(
-        out.status.success(),
-        "pygcode rejects {}:\n{}",
-        gcode.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("the check prints JSON")
-}
-
 #[test]
 fn pygcode_reads_our_gcode_and_draws_the_plotted_paths() {
     let Some(python) = interpreter("MOYO_PYTHON") else {
@@ -833,7 +771,7 @@ fn pygcode_reads_our_gcode_and_draws_the_plotted_paths() {
         .args(["plot", "in.svg", "-o", "out.gcode"])
         .assert()
         .success();
-    let r = pygcode_check(&python, &dir.path().join("out.gcode"));
+    let r = read_gcode(&python, &dir.path().join("out.gcode"), "spindle");
     assert_eq!(r["strokes"], 4, "{r}");
     assert_eq!(r["rapid_down"], 0, "{r}");
     assert_eq!(r["pen_up_at_end"], true, "{r}");
@@ -860,7 +798,7 @@ fn pygcode_reads_our_gcode_and_draws_the_plotted_paths() {
         .args(["-o", "hem.gcode"])
         .assert()
         .success();
-    let r = pygcode_check(&python, &dir.path().join("hem.gcode"));
+    let r = read_gcode(&python, &dir.path().join("hem.gcode"), "spindle");
     let s = stats_json(&dir, "hem.svg");
     assert!(number(&r, "strokes") >= number(&s, "paths"), "{r}");
     assert_eq!(r["rapid_down"], 0, "{r}");
