@@ -69,6 +69,7 @@
 #![cfg_attr(test, allow(unused_crate_dependencies))]
 // The library never prints: the command and the examples talk to people.
 #![warn(clippy::print_stdout, clippy::print_stderr)]
+#![forbid(unsafe_code)]
 #[cfg(all(feature = "cli", unix))]
 use signal_hook as _;
 #[cfg(feature = "cli")]

@@ -5,9 +5,8 @@
 //! own statistics. The colour preview is a separate document.
 //!
 //! The vpype test runs when `MOYO_VPYPE` names a vpype executable
-//! (`.ci/run` installs one in a virtual environment). Without it the test
-//! says so and passes, unless `CI` is set, where a missing vpype is a
-//! failure.
+//! (`tools/test-env.sh` installs one in a virtual environment; see
+//! `readers.rs` for what happens without it).
 
 use std::process::Command;
 
@@ -64,12 +63,7 @@ const FILL_ONLY: &str = ";stroke:none";
 
 #[test]
 fn vpype_reads_exactly_the_plotted_pens_with_their_ink() {
-    let Some(vpype) = std::env::var_os("MOYO_VPYPE") else {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "MOYO_VPYPE is not set in CI; .ci/run installs vpype"
-        );
-        eprintln!("skipped: set MOYO_VPYPE to a vpype executable to run this test");
+    let Some(vpype) = crate::readers::reader("MOYO_VPYPE") else {
         return;
     };
     let dir = tempfile::tempdir().unwrap();

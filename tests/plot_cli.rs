@@ -744,22 +744,10 @@ fn documentation_layers_are_neither_hatched_nor_occluded() {
 // ---------------------------------------------------------------------------
 // Real interpreters read our G-code and HPGL.
 //
-// Each test runs when its variable names the program (`.ci/run` installs
-// both); without it the test says so and passes, unless `CI` is set, where
-// a missing interpreter is a failure (as the vpype test in compat.rs).
+// Each test runs when its variable names the program (`tools/test-env.sh`
+// installs both); without it, see `readers.rs`.
 
-/// The program named by `var`, or `None` (with a note) outside CI.
-pub(crate) fn interpreter(var: &str) -> Option<std::ffi::OsString> {
-    let value = std::env::var_os(var);
-    if value.is_none() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "{var} is not set in CI; .ci/run sets it"
-        );
-        eprintln!("skipped: set {var} to run this test (.ci/run does)");
-    }
-    value
-}
+pub(crate) use crate::readers::reader as interpreter;
 
 #[test]
 fn pygcode_reads_our_gcode_and_draws_the_plotted_paths() {

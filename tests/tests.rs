@@ -17,6 +17,7 @@ mod kimono;
 mod lsystem_cli;
 mod pen_stage;
 mod plot_cli;
+mod readers;
 mod readme;
 mod rendered;
 mod resource_bounds;

@@ -315,7 +315,7 @@ mod tests {
         assert_eq!(f.value(-7.0, 0.0, 0.0, 0.0), 0.0);
         let f = Formula::parse("sqrt(x)").unwrap();
         assert_eq!(f.value(-1.0, 0.0, 0.0, 0.0), 0.0);
-        // The README's vignette: 1 in the middle, 0 at the corners.
+        // The guide's vignette (docs/guide/voronoi.md): 1 in the middle, 0 at the corners.
         let f = Formula::parse("1 - ((u - 0.5)^2 + (v - 0.5)^2) * 4").unwrap();
         assert_eq!(f.value(0.0, 0.0, 0.5, 0.5), 1.0);
         assert_eq!(f.value(0.0, 0.0, 0.0, 0.0), 0.0);

@@ -5,7 +5,7 @@
 //! every change it makes is a change of the description, rendered again
 //! in the background through the same library as `moyo render`.
 //!
-//! The HTTP API the page uses is documented in the README ("The studio").
+//! The HTTP API the page uses is documented in docs/guide/studio.md.
 //! It is safe by default: it listens on 127.0.0.1, answers 403 to a
 //! request whose `Host` or `Origin` is not the address it serves, or that
 //! a browser marks as coming from another site (so a web page elsewhere
