@@ -104,7 +104,7 @@ pub use input::{import_svg, ImportOptions, Imported};
 pub use output::{render_png, to_svg, SvgOptions};
 pub use project::{
     build_scene, fill_scene, load_motifs, plot_scene, read_svg, render, FillJob, FillPattern,
-    Filled, PlotFormat, PlotJob, Plotted, Rendered,
+    FillRegion, Filled, PlotFormat, PlotJob, Plotted, Rendered,
 };
 pub use rng::{RandomStream, Seed};
 pub use scene::traditional;

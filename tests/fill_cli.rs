@@ -364,3 +364,28 @@ fn pens_from_colours_follow_pens_and_single_layer() {
     assert_eq!(labels(&["--single-layer"]), ["1 #ff0000", "2 fill"]);
     assert_eq!(labels(&[]).len(), 4, "three colours, three pens");
 }
+
+/// Ferris (tests/data/): shapes painted over one another are filled as a
+/// viewer sees them — the face and the eye whites painted over the body
+/// are filled, not cut out as the even-odd rule of the outlines would.
+#[test]
+fn a_real_drawing_is_filled_as_it_is_painted() {
+    use moyo::{fill_scene, import_svg, FillJob, FillPattern, FillRegion, ImportOptions};
+    let svg = fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/ferris-panics.svg"),
+    )
+    .unwrap();
+    let drawing = import_svg(&svg, &ImportOptions::DEFAULT).unwrap().scene;
+    let job = FillJob::new(FillPattern::Voronoi).with_spacing(3.0);
+    let painted = fill_scene(drawing.clone(), &job).unwrap().fill;
+    let even_odd = fill_scene(drawing, &job.with_region(FillRegion::EvenOdd))
+        .unwrap()
+        .fill;
+    // The face alone is about a third of the crab's area.
+    assert!(
+        painted.pen_down_mm > 1.3 * even_odd.pen_down_mm,
+        "as painted {:.0} mm, even-odd {:.0} mm",
+        painted.pen_down_mm,
+        even_odd.pen_down_mm
+    );
+}

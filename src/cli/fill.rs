@@ -103,6 +103,13 @@ pub(crate) struct FillArgs {
     /// well (by default only the input's own pen draws them).
     #[arg(long)]
     outline: bool,
+    /// Fill every closed outline with the even-odd rule, fills ignored (a
+    /// shape inside a shape is a hole, stacked shapes cancel). By default
+    /// the fill follows what is painted: filled shapes united, a shape
+    /// painted over another covering it, with the closed outlines of
+    /// unfilled shapes (an outline inside an outline is a hole).
+    #[arg(long)]
+    even_odd: bool,
     /// Write the drawing and the fill as built: without the pen stage
     /// (doubled line work and debris taken out, strokes merged and sorted
     /// for little pen-up travel), which runs by default.
@@ -131,6 +138,9 @@ impl FillArgs {
         job.dot = self.dot;
         job.pen_stage = !self.no_pen_stage;
         job.outline = self.outline;
+        if self.even_odd {
+            job = job.with_region(moyo::FillRegion::EvenOdd);
+        }
         if let Some(path) = &self.image {
             let fail =
                 |e: &dyn std::fmt::Display| CliError::Message(format!("{}: {e}", path.display()));

@@ -47,9 +47,13 @@ enum Command {
     /// Path count, pen-down and pen-up length and plot time of an SVG.
     #[command(allow_negative_numbers = true)]
     Stats(plot::StatsArgs),
-    /// Fill the closed shapes of any SVG with a Voronoi-family pattern.
+    /// Fill the closed shapes of any SVG with a Voronoi-family pattern or a
+    /// zentangle.
     ///
-    /// Shapes inside shapes are holes; open strokes fill nothing. The
+    /// The fill follows what is painted: filled shapes united (a shape
+    /// painted over another covers it), and closed outlines of unfilled
+    /// shapes, an outline inside an outline being a hole (--even-odd: every
+    /// outline by the even-odd rule). Open strokes fill nothing. The
     /// pattern goes on a layer and pen of its own; the input's layers and
     /// pens are kept as they are.
     #[command(allow_negative_numbers = true)]

@@ -20,7 +20,7 @@ mod render;
 pub use crate::cancel::Cancel;
 pub use crate::motif::{Note, Progress};
 pub use files::{load_motifs, load_motifs_with, user_files, FileReader, UserFiles};
-pub use fill::{fill_scene, FillJob, FillPattern, Filled};
+pub use fill::{fill_scene, FillJob, FillPattern, FillRegion, Filled};
 pub use plot::{plot_scene, read_svg, PlotFormat, PlotJob, Plotted, Preview};
 pub use render::{
     build_scene, build_scene_with_progress, render, render_cancellable, render_for_editing,

@@ -2,8 +2,8 @@
 //! zentangle inside the closed shapes of a drawing, on a pen of its own,
 //! the drawing's own lines kept as they are.
 //!
-//! [`fill_scene`] takes the closed subpaths of the drawing's plotted layers
-//! as one region (even-odd: a shape inside a shape is a hole), describes one
+//! [`fill_scene`] takes the region a viewer sees painted in the drawing's
+//! plotted layers ([`FillRegion`]), describes one
 //! `[[layers.voronoi]]` or `[[layers.zentangle]]` table over it in code, and
 //! has the family's own generator build it — so a fill draws what that
 //! table would in a scene description. The layer it makes is added to the
@@ -18,6 +18,7 @@ use super::Note;
 use crate::error::{Error, Result};
 use crate::geom::density::GreyImage;
 use crate::geom::path_length;
+use crate::geom::region::{FillRule, Region};
 use crate::geom::subpath::subpaths;
 use crate::motif::Library;
 use crate::output::{render_png, to_svg, SvgOptions};
@@ -158,6 +159,25 @@ pub struct FillJob {
     /// debris, merged and sorted) on the whole drawing for
     /// [`Filled::plotted`]. Default on.
     pub pen_stage: bool,
+    /// How the drawing's shapes make the region filled. Default
+    /// [`FillRegion::Painted`].
+    pub region: FillRegion,
+}
+
+/// How [`fill_scene`] reads the drawing's shapes into the region it fills.
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FillRegion {
+    /// What a viewer sees painted: the filled shapes united, in any paint
+    /// order — a shape painted over another covers it, and a shape's hole
+    /// is a hole only where nothing else is painted — together with the
+    /// closed outlines of unfilled shapes, which are line art: among
+    /// themselves an outline inside an outline is a hole (even-odd).
+    #[default]
+    Painted,
+    /// Every closed outline, filled or not, with the even-odd rule: a shape
+    /// inside a shape is a hole, so stacked filled shapes cancel.
+    EvenOdd,
 }
 
 impl FillJob {
@@ -181,7 +201,14 @@ impl FillJob {
         image: None,
         outline: false,
         pen_stage: true,
+        region: FillRegion::Painted,
     };
+
+    /// This job reading the drawing's shapes as `region` says.
+    pub const fn with_region(mut self, region: FillRegion) -> FillJob {
+        self.region = region;
+        self
+    }
 
     /// This job with sites denser where `image` is dark.
     pub fn with_image(mut self, image: GreyImage) -> FillJob {
@@ -331,9 +358,11 @@ const FILL_COLOR: Color = Color::rgb(0x1f, 0x6f, 0x8b);
 
 /// Fills the closed shapes of `drawing` as `job` says, on a new layer.
 ///
-/// The region is every closed subpath of the plotted layers (transforms
-/// applied; open strokes, fill-only paths and `%` layers left out), taken
-/// together with the even-odd rule, so a shape inside a shape is a hole.
+/// The region is what the plotted layers paint (transforms applied; open
+/// strokes, fill-only paths and `%` layers left out), as
+/// [`FillJob::region`] says: by default the filled shapes united with the
+/// closed outlines of unfilled ones, or every closed outline with the
+/// even-odd rule.
 /// The drawing's layers and pens come back as they were, the fill's
 /// layer after them, behind them in depth, with an id none of the
 /// drawing's ids starts with; its pen is added (named `fill`, blue-green,
@@ -358,7 +387,8 @@ const FILL_COLOR: Color = Color::rgb(0x1f, 0x6f, 0x8b);
 ///
 /// # Errors
 /// [`Error::Invalid`] with field `input` when the drawing has no closed
-/// shape or its closed shapes enclose no area; with the option's name
+/// shape or its closed shapes enclose no area, and with field `pattern`
+/// when the pattern draws nothing inside them; with the option's name
 /// (`spacing`, `points`, `relax`, `pen`, `dot`, `seed`) for a bad option,
 /// both `spacing` and `points`, or a `dot` for another pattern than
 /// stipple.
@@ -382,13 +412,7 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     let pen = job.pen.unwrap_or_else(|| free_pen(&drawing));
     let id = free_layer_id(&drawing);
     let spec = ValidSpec::new(description(&drawing, job, pen, &id)).map_err(by_option)?;
-    let outline = closed_shapes(&drawing);
-    if outline.elements().is_empty() {
-        return Err(Error::invalid(
-            "input",
-            "has no closed shape to fill (only open strokes, or nothing a pen draws)",
-        ));
-    }
+    let outline = region_to_fill(&drawing, job.region)?;
     let mut library = Library::new();
     library.add_paths(INPUT, outline);
     if let Some(image) = &job.image {
@@ -406,6 +430,16 @@ pub fn fill_scene(mut drawing: Scene, job: &FillJob) -> Result<Filled> {
     })?;
     layer.depth = drawing.layers.iter().map(|l| l.depth).max().unwrap_or(0) + 1;
     let fill = stats(&layer);
+    if fill.paths == 0 {
+        return Err(Error::invalid(
+            "pattern",
+            format!(
+                "the {} pattern drew nothing inside the shapes; a smaller spacing \
+                 or more points give it room",
+                job.pattern.name()
+            ),
+        ));
+    }
     let new_pen = drawing.pen(pen).is_none();
     if new_pen {
         let at = drawing.pens.partition_point(|p| p.number < pen);
@@ -594,25 +628,59 @@ fn by_option(e: Error) -> Error {
     Error::invalid(option, message)
 }
 
-/// Every closed subpath of the plotted layers, in the layers' coordinates,
-/// each ending with a close-path; fill-only paths are paint, not lines.
-fn closed_shapes(drawing: &Scene) -> BezPath {
-    let mut out = BezPath::new();
+/// The boundary of the region `mode` makes of the drawing's plotted
+/// layers, in the layers' coordinates: simple contours that paint it under
+/// either fill rule.
+///
+/// # Errors
+/// [`Error::Invalid`] (field `input`) when there is no closed shape, or
+/// when the closed shapes enclose no area.
+fn region_to_fill(drawing: &Scene, mode: FillRegion) -> Result<BezPath> {
+    let mut painted = Vec::new();
+    let mut outlines = BezPath::new();
     for layer in drawing.layers.iter().filter(|l| l.is_plotted()) {
         layer.content.visit_paths(Affine::IDENTITY, &mut |p, t| {
+            // Fill-only paths are colour a pen does not draw.
             if !p.style.is_drawn() {
                 return;
             }
             let path = t * p.path.clone();
+            if mode == FillRegion::Painted && p.style.fill.is_some() {
+                // The import has made every fill non-zero already. A shape
+                // that encloses nothing paints nothing.
+                if let Ok(region) = Region::new(path, FillRule::NonZero) {
+                    painted.push(region);
+                }
+                return;
+            }
             for sub in subpaths(&path).filter(|s| s.is_closed()) {
-                out.extend(sub.elements());
+                outlines.extend(sub.elements());
                 if !sub.ends_with_close() {
-                    out.close_path();
+                    outlines.close_path();
                 }
             }
         });
     }
-    out
+    if painted.is_empty() && outlines.elements().is_empty() {
+        return Err(Error::invalid(
+            "input",
+            "has no closed shape to fill (only open strokes, or nothing a pen draws)",
+        ));
+    }
+    if !outlines.elements().is_empty() {
+        if let Ok(region) = Region::new(outlines, FillRule::EvenOdd) {
+            painted.push(region);
+        }
+    }
+    let region = Region::union_all(&painted);
+    if region.is_empty() {
+        return Err(Error::invalid(
+            "input",
+            "its closed shapes enclose no area (each is degenerate, retraced, \
+             or cancelled by another with the even-odd rule)",
+        ));
+    }
+    Ok(region.into_path())
 }
 
 /// The smallest pen number the drawing does not use, whose SVG layer id

@@ -264,7 +264,7 @@ fn a_drawing_without_closed_shapes_has_nothing_to_fill() {
     let (field, message) = invalid(Scene::one_pen(page, content), FillJob::DEFAULT);
     assert_eq!(field, "input");
     assert!(
-        message.starts_with("its closed shapes are no region"),
+        message.starts_with("its closed shapes enclose no area"),
         "{message}"
     );
 }
@@ -433,4 +433,61 @@ fn the_fill_leaves_the_outline_to_the_drawing_unless_asked() {
         let with = along_outline(&fill_scene(frame(), &job).unwrap());
         assert!((with - 440.0).abs() < 1.0, "{pattern:?}: {with} mm");
     }
+}
+
+/// A dark square with a white square painted over its middle, and a
+/// ring (a filled shape with a hole) with a disc painted in its hole.
+const PAINTED: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="100mm" viewBox="0 0 200 100">
+    <rect x="10" y="10" width="80" height="80" fill="#234"/>
+    <rect x="35" y="35" width="30" height="30" fill="#fff" stroke="#000"/>
+    <path d="M 110 10 H 190 V 90 H 110 Z M 135 35 V 65 H 165 V 35 Z" fill="#234" fill-rule="evenodd"/>
+    <circle cx="150" cy="50" r="8" fill="#c33"/>
+</svg>"##;
+
+/// How many of the fill's points lie inside `rect`.
+fn points_in(filled: &Filled, rect: Rect) -> usize {
+    along(fill_layer(filled), 0.2)
+        .iter()
+        .filter(|p| rect.contains(**p))
+        .count()
+}
+
+#[test]
+fn the_fill_follows_what_is_painted_unless_asked_for_even_odd() {
+    let drawing = import_svg(PAINTED, &ImportOptions::DEFAULT).unwrap().scene;
+    let job = FillJob::new(FillPattern::Voronoi).with_spacing(3.0);
+    let middle = Rect::new(37.0, 37.0, 63.0, 63.0);
+    let ring_hole = Rect::new(137.0, 37.0, 163.0, 63.0);
+    let disc = Rect::new(146.0, 46.0, 154.0, 54.0);
+
+    // As painted: the white square covers the dark one, it does not cut a
+    // hole; the ring's hole is empty but where the disc is painted.
+    let painted = fill_scene(drawing.clone(), &job).unwrap();
+    assert!(points_in(&painted, middle) > 100);
+    assert!(points_in(&painted, disc) > 10);
+    let hole_not_disc = along(fill_layer(&painted), 0.2)
+        .iter()
+        .filter(|p| ring_hole.contains(**p) && p.distance((150.0, 50.0).into()) > 8.1)
+        .count();
+    assert_eq!(
+        hole_not_disc, 0,
+        "the ring's hole stays empty around the disc"
+    );
+
+    // Even-odd of the outlines: the stacked square is a hole, and the
+    // disc inside the ring's hole is filled as an island.
+    let even_odd = fill_scene(drawing, &job.with_region(FillRegion::EvenOdd)).unwrap();
+    assert_eq!(points_in(&even_odd, middle), 0);
+    assert!(points_in(&even_odd, disc) > 10);
+}
+
+#[test]
+fn a_pattern_that_draws_nothing_is_an_error() {
+    let tiny = r##"<svg xmlns="http://www.w3.org/2000/svg" width="20mm" height="20mm" viewBox="0 0 20 20">
+        <rect x="5" y="5" width="0.6" height="0.6" stroke="#000" fill="none"/>
+    </svg>"##;
+    let drawing = import_svg(tiny, &ImportOptions::DEFAULT).unwrap().scene;
+    let (field, message) = invalid(drawing, FillJob::new(FillPattern::Glass));
+    assert_eq!(field, "pattern");
+    assert!(message.contains("drew nothing"), "{message}");
 }
