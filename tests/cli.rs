@@ -862,3 +862,35 @@ fn a_negative_number_is_a_value_to_check_not_an_unknown_option() {
         assert!(!stderr.contains("unexpected argument"), "{stderr}");
     }
 }
+
+/// `render` reports what `stats` then reads in the SVG: the same path
+/// count and the same pen-down length to the millimetre it prints.
+#[test]
+fn render_and_stats_agree_on_what_was_written() {
+    let dir = tempdir();
+    for (template, precision) in [("kimono-1", "3"), ("zentangle-10", "1")] {
+        let out = moyo(&dir)
+            .args([
+                "render",
+                "-t",
+                template,
+                "-o",
+                "x.svg",
+                "--precision",
+                precision,
+            ])
+            .assert()
+            .success()
+            .get_output()
+            .stderr
+            .clone();
+        let said = String::from_utf8(out).unwrap();
+        let inside = said.split_once(" (").unwrap().1;
+        let (paths, rest) = inside.split_once(" paths, ").unwrap();
+        let mm = rest.split_once(" mm pen-down").unwrap().0;
+        let stats = crate::plot_cli::stats_json(&dir, "x.svg");
+        assert_eq!(paths, stats["paths"].to_string(), "{template}: {said}");
+        let read = stats["pen_down_mm"].as_f64().unwrap();
+        assert_eq!(mm, format!("{read:.0}"), "{template}: {said}, stats {read}");
+    }
+}

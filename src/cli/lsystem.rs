@@ -368,7 +368,7 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
     if let Some(dir) = &args.frames {
         remove_old_frames(dir, &files)?;
     }
-    let stats = rendered.scene.stats();
+    let stats = rendered.stats();
     eprintln!(
         "wrote {}{} ({} paths, {:.0} mm pen-down){}",
         args.output.display(),

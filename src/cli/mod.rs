@@ -397,7 +397,7 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
     }
     moyo::output::write_all_atomic(&files)?;
 
-    let stats = rendered.scene.stats();
+    let stats = rendered.stats();
     let also: Vec<String> = [&args.preview_svg, &args.png, &args.obj]
         .into_iter()
         .flatten()

@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::motif::{Context, Flow, Library};
 use crate::output::{path_dump, render_png, to_svg, SvgOptions};
 use crate::plot::{self, PlotOptions};
-use crate::scene::{Color, Group, Layer, Model, Pen, Scene, UniqueIds};
+use crate::scene::{Color, Group, Layer, Model, Pen, Scene, Stats, UniqueIds};
 use crate::spec::{LayerItem, LayerSpec, Points, Table, ValidSpec, VoronoiSpec};
 
 /// Builds the scene of a description, reading user files relative to the
@@ -313,6 +313,13 @@ fn render_through(
 }
 
 impl Rendered {
+    /// Path count and pen-down length of [`Rendered::svg`] as written: the
+    /// coordinates rounded to its precision, as a program reading the SVG
+    /// (`moyo stats`, vpype) measures them.
+    pub fn stats(&self) -> Stats {
+        self.scene.stats_at_precision(self.options.precision)
+    }
+
     /// What [`render_cancellable`] makes of `spec`, from this render of
     /// it by [`render_for_editing`]: the stages that render left out (the
     /// pen stage) run on its scene.

@@ -22,7 +22,7 @@ pub use embed::embedded_description;
 pub use model::{Model, ModelPart};
 pub(crate) use unique::UniqueIds;
 
-use kurbo::{Affine, BezPath, Rect, Shape};
+use kurbo::{Affine, BezPath, PathEl, Point, Rect, Shape};
 
 use crate::units::Page;
 
@@ -345,6 +345,33 @@ impl Scene {
     /// Path count and pen-down length of the layers drawn with one pen.
     pub fn pen_stats(&self, pen: u32) -> Stats {
         self.stats_where(|l| l.pen == pen)
+    }
+
+    /// [`Scene::stats`] of the scene as an SVG with `precision` decimals
+    /// holds it: each path's coordinates rounded where they are written,
+    /// in its group (the groups' transforms are written exactly).
+    pub fn stats_at_precision(&self, precision: u8) -> Stats {
+        let scale = 10f64.powi(i32::from(precision));
+        let round =
+            |p: Point| Point::new((p.x * scale).round() / scale, (p.y * scale).round() / scale);
+        let mut s = Stats::default();
+        self.visit_paths(|layer, p, t| {
+            if layer.is_plotted() && p.style.is_drawn() {
+                let mut path = p.path.clone();
+                for el in path.elements_mut() {
+                    *el = match *el {
+                        PathEl::MoveTo(a) => PathEl::MoveTo(round(a)),
+                        PathEl::LineTo(a) => PathEl::LineTo(round(a)),
+                        PathEl::QuadTo(a, b) => PathEl::QuadTo(round(a), round(b)),
+                        PathEl::CurveTo(a, b, c) => PathEl::CurveTo(round(a), round(b), round(c)),
+                        PathEl::ClosePath => PathEl::ClosePath,
+                    };
+                }
+                s.paths += 1;
+                s.pen_down_mm += crate::geom::path_length(&(t * path));
+            }
+        });
+        s
     }
 
     fn stats_where(&self, keep: impl Fn(&Layer) -> bool) -> Stats {
