@@ -54,7 +54,9 @@
 //!
 //! The modules hold the rest: [`spec`] every table of the description (to
 //! build one in code), [`plot`] the plot stages and their options,
-//! [`output`] the writers (SVG, PNG, G-code, HPGL, path dump), [`input`]
+//! [`output`] the writers (SVG, PNG, G-code, HPGL, DXF, path dump),
+//! [`stencil`] line art made into a cuttable stencil (bridges, blade
+//! limits), [`input`]
 //! SVG import, [`geom`] the geometry toolkit (regions, clipping, offsets,
 //! splines), [`lsystem`] the L-system engine (rules, turtle, the
 //! stroke-guided sketch), [`vine`] the twining-vine growth simulation (3D
@@ -89,6 +91,7 @@ pub mod project;
 mod rng;
 mod scene;
 pub mod spec;
+pub mod stencil;
 #[cfg(feature = "studio")]
 pub mod studio;
 pub mod templates;

@@ -23,6 +23,7 @@ mod rendered;
 mod resource_bounds;
 mod safe_writes;
 mod snapshots;
+mod stencil_cli;
 #[cfg(feature = "studio")]
 mod studio;
 #[cfg(feature = "studio")]

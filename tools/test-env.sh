@@ -1,7 +1,8 @@
 # The real readers the integration tests check moyo's output with, the
 # way CI installs them:
-#   - vpype reads our SVG, pygcode our G-code and trimesh our OBJ (as
-#     Blender does): a Python virtual environment with pinned versions,
+#   - vpype reads our SVG, pygcode our G-code, ezdxf our DXF and trimesh
+#     our OBJ (as Blender does): a Python virtual environment with pinned
+#     versions,
 #     target/vpype-venv (MOYO_VPYPE, MOYO_PYTHON);
 #   - hp2xx draws our HPGL: Debian's package, unpacked into target/hp2xx
 #     without installing it (MOYO_HP2XX);
@@ -24,12 +25,13 @@ moyo_test_env() {
   fi
   if [ -x "$venv/bin/python" ]; then
     "$venv/bin/python" -c 'import pygcode' 2>/dev/null || "${pip[@]}" "pygcode==0.2.1"
+    "$venv/bin/python" -c 'import ezdxf' 2>/dev/null || "${pip[@]}" "ezdxf==1.4.4"
     "$venv/bin/python" -c 'import trimesh' 2>/dev/null || "${pip[@]}" "trimesh==5.2.0" "numpy==2.4.6"
   fi
-  if [ -x "$venv/bin/vpype" ] && "$venv/bin/python" -c 'import pygcode, trimesh' 2>/dev/null; then
+  if [ -x "$venv/bin/vpype" ] && "$venv/bin/python" -c 'import pygcode, ezdxf, trimesh' 2>/dev/null; then
     export MOYO_VPYPE="$PWD/$venv/bin/vpype" MOYO_PYTHON="$PWD/$venv/bin/python"
   else
-    failed="$failed vpype/pygcode/trimesh (python3 -m venv, pip)"
+    failed="$failed vpype/pygcode/ezdxf/trimesh (python3 -m venv, pip)"
   fi
 
   local hp2xx_root=target/hp2xx

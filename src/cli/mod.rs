@@ -12,6 +12,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 mod fill;
 mod lsystem;
 mod plot;
+mod stencil;
 #[cfg(feature = "studio")]
 mod studio;
 
@@ -37,13 +38,18 @@ enum Command {
     Render(RenderArgs),
     /// List the built-in templates with a one-line description each.
     Templates,
-    /// Run the plot pipeline on any SVG and write SVG, G-code or HPGL.
+    /// Run the plot pipeline on any SVG and write SVG, G-code, HPGL or DXF.
     ///
     /// Stages run in a fixed order: transform, hatch, occlude, then per pen
     /// dedupe, merge, debris, simplify, sort, multipass. Only the stages
     /// asked for run.
     #[command(allow_negative_numbers = true)]
     Plot(Box<plot::PlotArgs>),
+    /// Make line art into a stencil that holds together: strokes cut out
+    /// at their pen's width, islands held by bridges, blade limits
+    /// reported; written as SVG, HPGL (cutter) or DXF, inside first.
+    #[command(allow_negative_numbers = true)]
+    Stencil(Box<stencil::StencilArgs>),
     /// Path count, pen-down and pen-up length and plot time of an SVG.
     #[command(allow_negative_numbers = true)]
     Stats(plot::StatsArgs),
@@ -198,6 +204,7 @@ pub(crate) fn run() -> ExitCode {
         Command::Devices { name } => plot::devices(name.as_deref()),
         Command::Plot(args) => plot::plot(&args),
         Command::Stats(args) => plot::stats(&args),
+        Command::Stencil(args) => stencil::stencil(&args),
         Command::Fill(args) => fill::fill(&args),
         Command::Lsystem(args) => lsystem::lsystem(&args),
         #[cfg(feature = "studio")]

@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use super::{check_outputs, stdout_error, warn_outside_page, CliError, Named};
 use moyo::input::{ImportOptions, Imported, PenGrouping};
 use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
+use moyo::output::dxf::DxfOptions;
 use moyo::output::gcode::{GcodeOptions, Origin};
 use moyo::output::hpgl::{CutterOptions, HpglOptions};
 use moyo::output::{write_all_atomic, RunOptions, SvgOptions};
@@ -22,6 +23,7 @@ pub(crate) enum OutputFormat {
     Svg,
     Gcode,
     Hpgl,
+    Dxf,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -41,7 +43,8 @@ pub(crate) struct PlotArgs {
     pens: PenArgs,
     /// Output format; by default the device's (--device, or a moyo SVG's
     /// own), else from the output's extension (.svg; .gcode, .nc, .ngc, .g
-    /// → gcode; .hpgl, .plt, .hgl → hpgl). Another extension needs it.
+    /// → gcode; .hpgl, .plt, .hgl → hpgl; .dxf). Another extension needs
+    /// it. A cutter's output (HPGL with --cutter, DXF) is cut inside first.
     #[arg(long, value_enum)]
     format: Option<OutputFormat>,
 
@@ -366,6 +369,8 @@ impl PlotArgs {
                 m.passes = passes;
                 m
             }),
+            // The job turns it on for a cutter's output.
+            inside_first: false,
         }
     }
 
@@ -382,6 +387,13 @@ impl PlotArgs {
             (Some(OutputFormat::Svg), None) => {
                 PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision))
             }
+            (Some(OutputFormat::Dxf), Some(_)) => {
+                return Err(CliError::Message(
+                    "--device: writes G-code or HPGL, but the output is DXF (name it .gcode or .hpgl, or give --format)"
+                        .into(),
+                ))
+            }
+            (Some(OutputFormat::Dxf), None) => PlotFormat::Dxf(DxfOptions::DEFAULT),
             (Some(OutputFormat::Gcode) | None, Some(Device::Gcode(o))) => {
                 PlotFormat::Gcode(self.gcode_options(o))
             }
@@ -418,7 +430,7 @@ impl PlotArgs {
     }
 
     /// The format asked for: --format, else the output's extension when
-    /// it names one (.gcode, .nc, .ngc, .g; .hpgl, .plt, .hgl, .svg).
+    /// it names one (.gcode, .nc, .ngc, .g; .hpgl, .plt, .hgl, .svg, .dxf).
     fn format(&self) -> Option<OutputFormat> {
         self.format.or_else(|| {
             let ext = self
@@ -431,6 +443,7 @@ impl PlotArgs {
                 "gcode" | "nc" | "ngc" | "g" => Some(OutputFormat::Gcode),
                 "hpgl" | "plt" | "hgl" => Some(OutputFormat::Hpgl),
                 "svg" => Some(OutputFormat::Svg),
+                "dxf" => Some(OutputFormat::Dxf),
                 _ => None,
             }
         })
@@ -440,7 +453,7 @@ impl PlotArgs {
     /// (when neither --format nor a device chooses one).
     fn unknown_extension(&self) -> String {
         let output = self.output.display();
-        let allowed = ".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt or .hgl";
+        let allowed = ".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt, .hgl or .dxf";
         match self.output.extension() {
             Some(ext) => format!(
                 "-o {output}: the extension .{} names no output format; \
@@ -611,7 +624,7 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
                     | (Some(OutputFormat::Gcode), Device::Gcode(_))
                     | (Some(OutputFormat::Hpgl), Device::Hpgl(_))
             );
-            if !fits && args.format() != Some(OutputFormat::Svg) {
+            if !fits && !matches!(args.format(), Some(OutputFormat::Svg | OutputFormat::Dxf)) {
                 eprintln!(
                     "warning: {}: its [device] is for another language than the output's; \
                      the output's defaults are used",

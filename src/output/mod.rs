@@ -13,6 +13,8 @@
 //!   written from one stroke model (pens in order, flattened strokes,
 //!   closed or open, page to machine coordinates), cut into runs between
 //!   refills or resumed part way ([`RunOptions`]);
+//! - [`dxf`]: AutoCAD R12 DXF for cutting programs and CAD, one layer
+//!   per pen, from the same stroke model;
 //! - [`path_dump`]: a stable one-line-per-path text for snapshot tests;
 //! - [`to_obj`]: the 3D models beside a drawing (a vine and its supports)
 //!   as Wavefront OBJ;
@@ -24,6 +26,7 @@
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
 pub mod device;
+pub mod dxf;
 pub mod gcode;
 pub mod hpgl;
 

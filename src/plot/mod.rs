@@ -1,7 +1,7 @@
 //! The plot pipeline: stages that turn a scene into one a plotter runs well
 //! (hidden lines, hatching, doubled line work, merging, blots, debris,
-//! simplifying, ordering), usable on generated scenes and on imported SVGs
-//! alike. Each stage reads and writes
+//! simplifying, ordering, inside-first order for cutters), usable on
+//! generated scenes and on imported SVGs alike. Each stage reads and writes
 //! a [`crate::scene::Scene`]; none generates motifs or writes files.
 
 pub mod blots;
@@ -12,6 +12,7 @@ pub mod flatten;
 pub mod hatch;
 pub mod merge;
 pub mod multipass;
+pub mod nest;
 pub mod occlude;
 pub mod pipeline;
 pub mod simplify;

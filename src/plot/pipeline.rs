@@ -1,7 +1,8 @@
 //! The plot pipeline in its fixed order, every stage optional:
 //!
 //! transform → hatch → occlude → (one layer per pen) → dedupe → merge →
-//! blots → debris → simplify → sort → multipass.
+//! blots → debris → simplify → sort (inside first, for a cutter) →
+//! multipass.
 //!
 //! Geometry is transformed first so that hatch spacing and tolerances are
 //! measured on the final page; fills become hatch lines before hidden lines
@@ -27,9 +28,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    blots, debris, dedupe, flatten, hatch, merge, multipass, occlude, simplify, sort, transform,
-    BlotOptions, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions, MultipassOptions,
-    OccludeOptions, SimplifyOptions, SortOptions, TransformOptions,
+    blots, debris, dedupe, flatten, hatch, merge, multipass, nest, occlude, simplify, sort,
+    transform, BlotOptions, DebrisOptions, DedupeOptions, HatchOptions, MergeOptions,
+    MultipassOptions, OccludeOptions, SimplifyOptions, SortOptions, TransformOptions,
 };
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
@@ -71,6 +72,12 @@ pub struct PlotOptions {
     /// Draw every path several times.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub multipass: Option<MultipassOptions>,
+    /// Cut every closed path after the paths inside it ([`nest`]), the
+    /// travel sort ordering each nesting level when it runs: what a
+    /// cutter needs, so that a piece is not freed before its holes are
+    /// cut.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub inside_first: bool,
 }
 
 fn finite_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<()> {
@@ -115,6 +122,7 @@ impl PlotOptions {
             simplify: None,
             sort: None,
             multipass: None,
+            inside_first: false,
             ..self.clone()
         }
     }
@@ -128,6 +136,7 @@ impl PlotOptions {
             || self.simplify.is_some()
             || self.sort.is_some()
             || self.multipass.is_some()
+            || self.inside_first
     }
 
     /// Checks every option's range; `field` prefixes the error paths
@@ -282,7 +291,9 @@ pub fn run_cancellable(mut scene: Scene, o: &PlotOptions, cancel: &Cancel) -> Re
     if let Some(s) = &o.simplify {
         simplify::run(&mut flat, s);
     }
-    if let Some(s) = &o.sort {
+    if o.inside_first {
+        nest::run(&mut flat, o.sort.as_ref());
+    } else if let Some(s) = &o.sort {
         sort::run(&mut flat, s);
     }
     if let Some(m) = &o.multipass {

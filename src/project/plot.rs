@@ -7,6 +7,7 @@ use kurbo::{BezPath, Point};
 
 use crate::error::{Error, Result};
 use crate::input::{import_svg, ImportOptions, Imported};
+use crate::output::dxf::{to_dxf, DxfOptions};
 use crate::output::gcode::{self, to_gcode, GcodeOptions};
 use crate::output::hpgl::{self, to_hpgl, HpglOptions};
 use crate::output::{render_png, to_svg, SvgOptions};
@@ -40,6 +41,21 @@ pub enum PlotFormat {
     Gcode(GcodeOptions),
     /// HPGL ([`to_hpgl`]).
     Hpgl(HpglOptions),
+    /// DXF for cutting programs and CAD ([`to_dxf`]).
+    Dxf(DxfOptions),
+}
+
+impl PlotFormat {
+    /// Whether the output is for a knife: HPGL in cutter mode, or DXF
+    /// (what cutting programs import). A cutter's output is always cut
+    /// inside first ([`PlotOptions::inside_first`]).
+    pub fn cuts(&self) -> bool {
+        match self {
+            PlotFormat::Hpgl(o) => o.cutter.is_some(),
+            PlotFormat::Dxf(_) => true,
+            PlotFormat::Svg(_) | PlotFormat::Gcode(_) => false,
+        }
+    }
 }
 
 /// A PNG preview of a plotted scene.
@@ -163,8 +179,9 @@ impl Plotted {
 }
 
 /// Runs a drawing (typically from [`read_svg`]) through the job: marks
-/// silhouettes when asked, runs the plot stages, writes the output and
-/// renders the preview.
+/// silhouettes when asked, runs the plot stages (inside first for a
+/// cutter's output, [`PlotFormat::cuts`]), writes the output and renders
+/// the preview.
 ///
 /// ```
 /// use moyo::output::hpgl::HpglOptions;
@@ -199,7 +216,11 @@ pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
     if job.silhouettes {
         plot::occlude::mark_path_groups_solid(&mut scene);
     }
-    let scene = plot::run(scene, &job.stages)?;
+    let stages = PlotOptions {
+        inside_first: job.stages.inside_first || job.format.cuts(),
+        ..job.stages.clone()
+    };
+    let scene = plot::run(scene, &stages)?;
     let (bytes, warnings) = match &job.format {
         PlotFormat::Svg(o) => (to_svg(&scene, o), Vec::new()),
         PlotFormat::Gcode(o) => {
@@ -209,6 +230,10 @@ pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
         PlotFormat::Hpgl(o) => {
             o.validate()?;
             (to_hpgl(&scene, o)?, hpgl::unsupported(&scene, o))
+        }
+        PlotFormat::Dxf(o) => {
+            o.validate()?;
+            (to_dxf(&scene, o), Vec::new())
         }
     };
     let png = match job.preview {
@@ -311,19 +336,27 @@ mod plot_tests {
             sort: Some(plot::SortOptions::DEFAULT),
             ..PlotOptions::default()
         };
-        let plotted_scene = plot::run(drawing(), &stages).unwrap();
         let formats = [
             PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(2)),
             PlotFormat::Gcode(GcodeOptions::default()),
+            PlotFormat::Hpgl(HpglOptions::DEFAULT),
             PlotFormat::Hpgl(HpglOptions::CUTTER),
+            PlotFormat::Dxf(DxfOptions::DEFAULT),
         ];
         for format in formats {
             let job = PlotJob::new(format.clone()).with_stages(stages.clone());
             let plotted = plot_scene(drawing(), &job).unwrap();
+            // A cutter's output is cut inside first.
+            let cutting = PlotOptions {
+                inside_first: format.cuts(),
+                ..stages.clone()
+            };
+            let plotted_scene = plot::run(drawing(), &cutting).unwrap();
             let expected = match &format {
                 PlotFormat::Svg(o) => to_svg(&plotted_scene, o),
                 PlotFormat::Gcode(o) => to_gcode(&plotted_scene, o).unwrap(),
                 PlotFormat::Hpgl(o) => to_hpgl(&plotted_scene, o).unwrap(),
+                PlotFormat::Dxf(o) => to_dxf(&plotted_scene, o),
             };
             assert_eq!(plotted.bytes, expected);
             assert!(plotted.png.is_none());

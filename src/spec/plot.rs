@@ -90,6 +90,7 @@ impl PlotSpec {
             simplify: self.simplify,
             sort: self.sort.options(),
             multipass: self.multipass,
+            inside_first: false,
         }
     }
 
