@@ -36,10 +36,16 @@ pub struct ZentangleSpec {
     /// wider than `smallest`.
     #[serde(default = "default_steps")]
     pub steps: u32,
-    /// The procedures the loop may use, by id (0–19, default all). A
-    /// region whose seed names a procedure left out gets an allowed one
-    /// from the same seed group, or any allowed one.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// The procedures the loop may use, by id (0–19, default all of
+    /// these) or, for the named tangles, by name (`"printemps"`, …: see
+    /// [`TANGLES`]) or id (20–31). A region whose seed names a procedure
+    /// left out gets an allowed one from the same seed group, or any
+    /// allowed one.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "procedure_ids"
+    )]
     pub procedures: Option<Vec<u32>>,
     /// The elements procedures may use, by the paper's names (`tr`, `sq`,
     /// `cl`, `mtr1`, …; default all). A procedure whose elements are all
@@ -150,7 +156,8 @@ fn default_contrast() -> f64 {
 pub struct ManualStep {
     /// A point of the region, mm.
     pub at: [f64; 2],
-    /// The procedure (0–19).
+    /// The procedure (0–19), or a named tangle by name or id (20–31).
+    #[serde(deserialize_with = "procedure_id")]
     pub procedure: u32,
     /// Run after the automatic steps, in a region they left white (a
     /// touch-up of the finished tile; what the studio writes for a click
@@ -180,6 +187,64 @@ impl Black {
 
 /// The number of drawing procedures of the paper's table 1 (ids 0–19).
 pub const PROCEDURES: u32 = 20;
+
+/// The named tangles (`tangle`), procedures `PROCEDURES + k` for the
+/// k-th name.
+pub const TANGLES: [&str; 12] = [
+    "printemps",
+    "crescent-moon",
+    "hollibaugh",
+    "florz",
+    "knightsbridge",
+    "nzeppel",
+    "static",
+    "tipple",
+    "cadent",
+    "betweed",
+    "shattuck",
+    "mooka",
+];
+
+/// The largest procedure id: the paper's and then the named tangles.
+const LAST_PROCEDURE: u32 = PROCEDURES + TANGLES.len() as u32 - 1;
+
+/// A procedure as a description writes it: an id, or a tangle's name.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum ProcedureRef {
+    Id(u32),
+    Name(String),
+}
+
+impl ProcedureRef {
+    fn id<E: serde::de::Error>(self) -> std::result::Result<u32, E> {
+        match self {
+            ProcedureRef::Id(id) => Ok(id),
+            ProcedureRef::Name(name) => TANGLES
+                .iter()
+                .position(|t| *t == name)
+                .map(|k| PROCEDURES + k as u32)
+                .ok_or_else(|| {
+                    E::custom(format!(
+                        "unknown tangle `{name}` (known: {}; or a procedure id 0–{LAST_PROCEDURE})",
+                        TANGLES.join(", ")
+                    ))
+                }),
+        }
+    }
+}
+
+fn procedure_id<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<u32, D::Error> {
+    ProcedureRef::deserialize(d)?.id()
+}
+
+fn procedure_ids<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<Vec<u32>>, D::Error> {
+    Option::<Vec<ProcedureRef>>::deserialize(d)?
+        .map(|list| list.into_iter().map(ProcedureRef::id).collect())
+        .transpose()
+}
 
 /// The most filling steps of one table.
 pub const MAX_STEPS: u32 = 5000;
@@ -259,11 +324,12 @@ impl Family for ZentangleSpec {
             if procedures.is_empty() {
                 return Err(Error::invalid(
                     format!("{f}.procedures"),
-                    "allows nothing: list one or more ids 0–19, or leave it out for all",
+                    "allows nothing: list one or more ids 0–19 or tangle names, or leave it \
+                     out for all",
                 ));
             }
             for (i, &p) in procedures.iter().enumerate() {
-                range(&format!("{f}.procedures[{i}]"), p, 0, PROCEDURES - 1)?;
+                range(&format!("{f}.procedures[{i}]"), p, 0, LAST_PROCEDURE)?;
             }
         }
         if let Some(elements) = &self.elements {
@@ -301,7 +367,7 @@ impl Family for ZentangleSpec {
                 &format!("{f}.manual[{i}].procedure"),
                 step.procedure,
                 0,
-                PROCEDURES - 1,
+                LAST_PROCEDURE,
             )?;
         }
         range(&format!("{f}.hatch"), self.hatch, 0.1, 10.0)

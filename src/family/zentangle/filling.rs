@@ -20,6 +20,7 @@ use kurbo::{BezPath, Point, Shape as _};
 use super::compose::compose;
 use super::element::{Mark, Paint};
 use super::procedure::{draw, Allowed, Drawn, Target, G1};
+use super::tangle::Tangle;
 use crate::error::{Error, Result};
 use crate::family::zentangle::ffd::Lattice;
 use crate::geom::polylabel::pole_of_inaccessibility;
@@ -321,7 +322,13 @@ impl<'a> Filling<'a> {
         let composed = compose(&area.region, &drawn.marks, pen, flattening(pen))?;
         let ink = ink_of(&composed.strokes, &composed.black);
         self.ink.add(&ink);
-        for piece in composed.white {
+        // A named tangle fills its section: what it leaves white stays so.
+        let white = if Tangle::from_id(procedure).is_some() {
+            Vec::new()
+        } else {
+            composed.white
+        };
+        for piece in white {
             // Inside a white mark: the seed the mark was given. Elsewhere
             // the piece keeps its region's seed, as its pixels would in the
             // paper's frame buffer (the blank page's stays "any").

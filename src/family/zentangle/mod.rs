@@ -8,13 +8,15 @@
 //! - `pattern`: the region-dependent patterns;
 //! - `procedure`: the twenty procedures of the paper's table 1 and their
 //!   seed groups;
+//! - `tangle`: twelve named Zentangle tangles (Printemps, Hollibaugh, …),
+//!   procedures from id 20;
 //! - `compose`: what a procedure's marks do to a white region — the
 //!   visible lines, the white pieces left and the black area;
 //! - `filling`: the loop;
 //! - `ink`: the ink per square millimetre the loop may not pass.
 //!
 //! Each step is a group `<layer>.<table>.step-K-pP` (step K drew
-//! procedure P) of its lines (`line-I`) and black parts (`black-I`,
+//! procedure P; `step-K-printemps` for a named tangle) of its lines (`line-I`) and black parts (`black-I`,
 //! hatched or filled as `black` says); `step-0-lines` holds the
 //! description's own `lines`.
 
@@ -29,6 +31,7 @@ mod ink;
 mod pattern;
 mod placement;
 mod procedure;
+mod tangle;
 
 use kurbo::{BezPath, Point};
 
@@ -43,6 +46,7 @@ use crate::spec::{Black, ZentangleSpec, ELEMENTS, PROCEDURES};
 use element::Shape;
 use filling::{Filling, Settings, Step};
 use procedure::Allowed;
+use tangle::Tangle;
 
 /// Builds a zentangle fill into a group with id `group_id`.
 ///
@@ -205,7 +209,10 @@ fn emit(
         return Ok(());
     }
     let id = match step.procedure {
-        Some(p) => format!("{group_id}.step-{k}-p{p}"),
+        Some(p) => match Tangle::from_id(p) {
+            Some(named) => format!("{group_id}.step-{k}-{}", named.name()),
+            None => format!("{group_id}.step-{k}-p{p}"),
+        },
         None => format!("{group_id}.step-{k}-lines"),
     };
     cx.take_paths(step.strokes.len() + step.black.len(), || {

@@ -10,14 +10,18 @@ use kurbo::{Affine, Point, Vec2};
 use super::element::{self, marks, Mark, Paint, Shape};
 use super::pattern;
 use super::placement::{self, Lattice};
+use super::tangle::{self, Tangle};
 use crate::error::Result;
 use crate::geom::region::Region;
 use crate::geom::TOLERANCE;
 use crate::rng::RandomStream;
 
-/// `G1`: every procedure (the blank page's seed).
+/// `G1`: every procedure (the blank page's seed), the named tangles
+/// after the paper's twenty (drawn only where a description allows them:
+/// by default it allows the paper's).
 pub(super) const G1: &[u32] = &[
-    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19,
+    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24,
+    25, 26, 27, 28, 29, 30, 31,
 ];
 /// `G2`: the region-dependent patterns.
 const G2: &[u32] = &[14, 15, 16, 17, 18, 19];
@@ -246,7 +250,8 @@ impl Drawn {
     }
 }
 
-/// Runs procedure `id` (0–19) in `t`.
+/// Runs procedure `id` in `t`: 0–19 the paper's, from 20 the named
+/// tangles ([`Tangle`]).
 ///
 /// # Errors
 /// From the region machinery on degenerate geometry.
@@ -413,7 +418,11 @@ pub(super) fn draw(
             let m = pattern::along_border(t.region, width, &mut |k| if k % 2 == 0 { a } else { b });
             out.add(m, group, allowed, rng);
         }
-        _ => {}
+        _ => {
+            if let Some(named) = Tangle::from_id(id) {
+                out.add(tangle::draw(named, t, rng)?, None, allowed, rng);
+            }
+        }
     }
     Ok(out)
 }

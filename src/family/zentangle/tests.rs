@@ -218,9 +218,10 @@ fn the_seed_decides_everything() {
 fn bad_tables_are_refused_with_their_field() {
     for (table, expected) in [
         (
-            "procedures = [20]\n",
-            "layers[0].zentangle[0].procedures[0]: must be between 0 and 19",
+            "procedures = [32]\n",
+            "layers[0].zentangle[0].procedures[0]: must be between 0 and 31",
         ),
+        ("procedures = [\"zendala\"]\n", "unknown tangle `zendala`"),
         ("procedures = []\n", "layers[0].zentangle[0].procedures: allows nothing"),
         (
             "elements = [\"xx\"]\n",
