@@ -181,6 +181,15 @@ fn bad_rules_name_the_option_and_the_column_and_write_nothing() {
             "with --stroke, rules are for `a` or `c`",
         ),
         (vec!["--stroke", "missing.svg"], "missing.svg"),
+        // What a sketch would silently ignore is refused, saying why.
+        (
+            vec!["--stroke", "stroke.svg", "--angle", "30"],
+            "--angle: with --stroke, each branch has its own angle in its rule",
+        ),
+        (
+            vec!["--stroke", "stroke.svg", "-n", "3"],
+            "--iterations: with --stroke, the sketch takes one step per --module mm",
+        ),
     ] {
         let d = dir();
         fs::write(d.path().join("stroke.svg"), STROKE).unwrap();

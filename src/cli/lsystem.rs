@@ -42,12 +42,14 @@ pub(crate) struct LSystemArgs {
     /// or c, e.g. 'a -> b(40) b(-40) c(30) a'.
     #[arg(long = "rule", value_name = "RULE", allow_hyphen_values = true)]
     rules: Vec<String>,
-    /// The turning angle δ, degrees (0–360).
-    #[arg(long, default_value_t = 25.7, value_name = "DEG")]
-    angle: f64,
-    /// Rewriting steps (0–100).
-    #[arg(long, short = 'n', default_value_t = 4, value_name = "N")]
-    iterations: u32,
+    /// The turning angle δ, degrees (0–360; default 25.7). Not with
+    /// --stroke, whose rules give each branch its angle.
+    #[arg(long, value_name = "DEG")]
+    angle: Option<f64>,
+    /// Rewriting steps (0–100; default 4). Not with --stroke, which takes
+    /// one step per --module of stroke.
+    #[arg(long, short = 'n', value_name = "N")]
+    iterations: Option<u32>,
     /// A named constant for the rules, repeatable: --define r1=0.9.
     #[arg(long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
     defines: Vec<(String, f64)>,
@@ -99,6 +101,34 @@ pub(crate) struct LSystemArgs {
     frames: Option<PathBuf>,
 }
 
+/// `--angle` unless given: ABOP's δ for the plants of its fig. 1.24.
+const DEFAULT_ANGLE: f64 = 25.7;
+
+/// `--iterations` unless given.
+const DEFAULT_ITERATIONS: u32 = 4;
+
+/// Refuses the options that a sketch has no use for, saying why: its
+/// angles are its rules' handles and its steps come from the stroke's
+/// length, so either would be silently ignored.
+fn refuse_with_stroke(args: &LSystemArgs) -> Result<(), CliError> {
+    if args.angle.is_some() {
+        return Err(CliError::Message(
+            "--angle: with --stroke, each branch has its own angle in its rule, \
+             e.g. --rule 'a -> b(40) b(-40) c(55) a(roll=180)'; leave --angle out"
+                .to_string(),
+        ));
+    }
+    if args.iterations.is_some() {
+        return Err(CliError::Message(
+            "--iterations: with --stroke, the sketch takes one step per --module mm \
+             of stroke, so the stroke's length sets the steps; leave -n out \
+             (or use a shorter stroke or a longer --module)"
+                .to_string(),
+        ));
+    }
+    Ok(())
+}
+
 fn parse_define(s: &str) -> Result<(String, f64), String> {
     let (name, value) = s
         .split_once('=')
@@ -114,7 +144,7 @@ impl LSystemArgs {
     /// The table the options describe.
     fn table(&self) -> Result<LSystemSpec, CliError> {
         let mut t = LSystemSpec {
-            angle: self.angle,
+            angle: self.angle.unwrap_or(DEFAULT_ANGLE),
             style: match self.style {
                 StyleArg::Stroke => LimbStyle::Stroke,
                 StyleArg::Outline => LimbStyle::Outline,
@@ -130,6 +160,7 @@ impl LSystemArgs {
         };
         match &self.stroke {
             Some(path) => {
+                refuse_with_stroke(self)?;
                 let name = path.file_name().map_or_else(
                     || Err(CliError::Message(format!("{}: not a file", path.display()))),
                     |n| Ok(n.to_string_lossy().into_owned()),
@@ -166,7 +197,7 @@ impl LSystemArgs {
             None => {
                 t.axiom = self.axiom.clone().unwrap_or_default();
                 t.rules = self.rules.clone();
-                t.iterations = self.iterations;
+                t.iterations = self.iterations.unwrap_or(DEFAULT_ITERATIONS);
                 t.constants = self.defines.iter().cloned().collect();
                 t.ignore = self.ignore.clone();
             }

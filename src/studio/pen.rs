@@ -117,8 +117,10 @@ impl Stroke {
                 || ("#1d1d1f".to_string(), 0.3),
                 |p| (p.color.to_string(), p.width),
             );
-        let growing =
-            GrowingSketch::new(&table, &field, spec.limits.max_segments)?.with_pen_width(pen.1);
+        // Kept on the page as the render keeps it.
+        let growing = GrowingSketch::new(&table, &field, spec.limits.max_segments)?
+            .with_pen_width(pen.1)
+            .within(scene.page.drawable().size());
         let mut stroke = Stroke {
             target,
             growing,

@@ -71,9 +71,30 @@ impl GrowingSketch {
     /// narrower than two pen widths are drawn as centre strokes, as the
     /// render draws them with the layer's pen. Default 0: every limb as
     /// the table's style asks.
-    pub(crate) fn with_pen_width(mut self, pen_width: f64) -> GrowingSketch {
-        self.pen_width = pen_width;
-        self
+    /// The pen also sets the sketch's shortest limb and the room kept
+    /// between trunk and branches ([`Sketch::with_pen`]).
+    pub(crate) fn with_pen_width(self, pen_width: f64) -> GrowingSketch {
+        GrowingSketch {
+            sketch: self.sketch.with_pen(pen_width),
+            pen_width,
+            ..self
+        }
+    }
+
+    /// This sketch kept on a drawable area `size` mm (scene millimetres:
+    /// from the margins' corner), see [`Sketch::within`].
+    pub(crate) fn within(self, size: kurbo::Size) -> GrowingSketch {
+        GrowingSketch {
+            sketch: self
+                .sketch
+                .within(DVec2::ZERO, DVec2::new(size.width, size.height)),
+            ..self
+        }
+    }
+
+    /// Whether the stroke left the page, where the sketch stopped growing.
+    pub(crate) fn off_page(&self) -> bool {
+        self.sketch.off_page()
     }
 
     /// Appends `points` to the stroke, up to where `steps` modules end
@@ -118,7 +139,6 @@ impl GrowingSketch {
     }
 
     /// The steps taken so far.
-    #[cfg_attr(not(feature = "studio"), allow(dead_code))]
     pub(crate) fn steps(&self) -> usize {
         self.sketch.steps()
     }

@@ -63,7 +63,7 @@ const MIN_LIMB: f64 = 0.05;
 pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let mut group = Group::new(group_id);
     let (skeleton, projection) = match &spec.sketch {
-        Some(sketch) => (grow_sketch(spec, sketch, cx)?, Projection::PAGE),
+        Some(sketch) => (grow_sketch(spec, sketch, group_id, cx)?, Projection::PAGE),
         None => (grow(spec, group_id, cx)?, Projection::of(spec.view.axes())),
     };
     let flat = flat(&skeleton, &projection);
@@ -190,7 +190,12 @@ fn drawn_limbs(
 }
 
 /// The skeleton of a sketch grown along its whole stroke.
-fn grow_sketch(spec: &LSystemSpec, sketch: &SketchSpec, cx: &mut Context<'_>) -> Result<Skeleton> {
+fn grow_sketch(
+    spec: &LSystemSpec,
+    sketch: &SketchSpec,
+    group_id: &str,
+    cx: &mut Context<'_>,
+) -> Result<Skeleton> {
     let stroke = stroke_points(
         &Stroke {
             points: sketch.points.as_ref(),
@@ -202,7 +207,18 @@ fn grow_sketch(spec: &LSystemSpec, sketch: &SketchSpec, cx: &mut Context<'_>) ->
         cx,
     )?;
     let mut growing = GrowingSketch::new(spec, &cx.item_field(), cx.budget().segments_left())?
-        .with_pen_width(cx.pen_width());
+        .with_pen_width(cx.pen_width())
+        .within(cx.page().drawable().size());
     growing.extend(&stroke)?;
+    if growing.off_page() {
+        cx.note(
+            group_id,
+            format!(
+                "the stroke leaves the page (inside its margins) after {:.1} mm: \
+                 the sketch stops there",
+                growing.steps() as f64 * sketch.module
+            ),
+        );
+    }
     Ok(growing.skeleton())
 }

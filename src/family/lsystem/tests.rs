@@ -153,7 +153,7 @@ fn smooth_limbs_pass_through_the_turtle_points() {
 
 #[test]
 fn a_sketch_lies_on_its_stroke_and_grows_with_its_steps() {
-    let table = "style = \"outline\"\n[layers.lsystem.sketch]\npoints = [[64, 190], [64, 20]]\nmodule = 10\n";
+    let table = "style = \"outline\"\n[layers.lsystem.sketch]\npoints = [[64, 185], [64, 20]]\nmodule = 10\n";
     let whole = scene(table);
     let b = bounds(&paths(&whole));
     // Along the stroke, branching to both sides of it.
@@ -162,6 +162,38 @@ fn a_sketch_lies_on_its_stroke_and_grows_with_its_steps() {
     let count = |k: u32| paths(&scene(&format!("{table}steps = {k}\n"))).len();
     let (three, six) = (count(3), count(6));
     assert!(0 < three && three < six && six < paths(&whole).len());
+}
+
+#[test]
+fn a_sketch_stays_on_the_page_and_says_where_its_stroke_leaves_it() {
+    use crate::spec::{Format, SceneSpec};
+    // A5 with 10 mm margins: 128 × 190 mm to draw in. The stroke runs
+    // off the right edge, as a gesture past the paper's edge does.
+    let table = "style = \"outline\"\n[layers.lsystem.sketch]\n\
+                 points = [[20, 180], [110, 100], [180, 30]]\nmodule = 8\nwidth = 2\n";
+    let drawn = paths(&scene(table));
+    let b = bounds(&drawn);
+    assert!(drawn.len() > 20);
+    assert!(
+        b.x0 >= 0.0 && b.y0 >= 0.0 && b.x1 <= 128.0 && b.y1 <= 190.0,
+        "{b:?} leaves the page"
+    );
+    let spec = SceneSpec::parse(&test_scene::text("lsystem", table), Format::Toml).unwrap();
+    let notes: Vec<String> = crate::project::render(&spec)
+        .unwrap()
+        .notes
+        .into_iter()
+        .map(|n| n.text)
+        .collect();
+    assert_eq!(notes.len(), 1, "{notes:?}");
+    assert!(
+        notes[0].starts_with("the stroke leaves the page (inside its margins) after"),
+        "{notes:?}"
+    );
+    // On the page, no warning.
+    let inside = "[layers.lsystem.sketch]\npoints = [[64, 180], [64, 60]]\n";
+    let spec = SceneSpec::parse(&test_scene::text("lsystem", inside), Format::Toml).unwrap();
+    assert!(crate::project::render(&spec).unwrap().notes.is_empty());
 }
 
 #[test]
@@ -185,14 +217,16 @@ fn a_sketch_drawn_point_by_point_is_the_one_the_render_grows() {
             "style = \"outline\"\n[layers.lsystem.sketch]\npoints = [{}]\nsmooth = false\nmodule = 9\n{steps}",
             points.join(", ")
         );
-        let rendered = paths(&scene(&table));
+        let whole = scene(&table);
+        let rendered = paths(&whole);
         let text = test_scene::text("lsystem", &table);
         let spec = SceneSpec::parse(&text, Format::Toml).unwrap();
         let table = &spec.layers[0].lsystem[0];
-        // The layer's pen: the default 0.3 mm.
+        // The layer's pen: the default 0.3 mm; the page inside its margins.
         let mut growing = GrowingSketch::new(table, "layers[0].lsystem[0]", usize::MAX)
             .unwrap()
-            .with_pen_width(0.3);
+            .with_pen_width(0.3)
+            .within(whole.page.drawable().size());
         let mut grown = Vec::new();
         for p in &stroke {
             growing.extend(std::slice::from_ref(p)).unwrap();

@@ -66,7 +66,27 @@
 //! continuation), so a `b` is a pointed leaflet. `tip` is true where no
 //! branch leaves the limb's last point. [`Sketch::parents`] keeps the
 //! tree: the limb each limb leaves from.
+//!
+//! # A plant, not a feather
+//!
+//! Three limits make the structure a plant drawn along a gesture (each
+//! leaves the rewriting as it was where it does not apply):
+//!
+//! * **The minimum limb** ([`Sketch::with_pen`]): a branch shorter than
+//!   [`MIN_LIMB_PENS`] pen widths is not drawn, and a shoot whose next
+//!   segment would be shorter stops growing, so that tips never curl
+//!   into scribble finer than the pen.
+//! * **The trunk**: a branch segment that would come nearer the `a` chain
+//!   than their half widths and the pen's width is not drawn (a shoot
+//!   stops there); and where a new `a` segment comes that near an older
+//!   branch, that branch is cut back to before the segment, with what
+//!   grew beyond it. No branch crosses the trunk, however the stroke
+//!   curves.
+//! * **The page** ([`Sketch::within`]): a branch whose tip's outline
+//!   would leave the page is not drawn; where the stroke itself leaves
+//!   it, the sketch stops growing ([`Sketch::off_page`] says so).
 
+mod room;
 mod rules;
 #[cfg(test)]
 mod tests;
@@ -77,6 +97,11 @@ use glam::{DVec2, DVec3};
 
 use super::{Limb, Skeleton};
 use crate::{Error, Result};
+use room::{BranchSegment, Room};
+
+/// The shortest limb a sketch draws, in pen widths: what a pen draws
+/// shorter than this reads as a dot, not a twig.
+pub const MIN_LIMB_PENS: f64 = 4.0;
 
 /// Sine and cosine of `deg` degrees, exact at multiples of 90° (so that
 /// branches in the page plane have z exactly 0).
@@ -138,6 +163,10 @@ struct Segment {
     width: f64,
     /// The limb the segment ends.
     limb: usize,
+    /// The index of the segment's tip in its limb.
+    end: usize,
+    /// The trunk node the segment leaves from, if it does.
+    root: Option<usize>,
     order: u32,
 }
 
@@ -159,6 +188,9 @@ pub struct Sketch {
     segments: usize,
     skeleton: Skeleton,
     parents: Vec<Option<usize>>,
+    /// For each limb, the index of the point of its parent it leaves at
+    /// (the tip of the parent's segment it leaves from).
+    attach: Vec<usize>,
     nodes: Vec<DVec3>,
     /// The `c` segments not yet rewritten.
     shoots: Vec<Segment>,
@@ -173,6 +205,13 @@ pub struct Sketch {
     /// Set when a step would have exceeded the budget: the sketch stays
     /// as it was before that step.
     full: bool,
+    /// The shortest branch segment drawn, mm.
+    min_limb: f64,
+    /// What is drawn so far, for keeping the branches clear of the trunk
+    /// and on the page.
+    room: Room,
+    /// Set when the stroke has left the page: the sketch grows no more.
+    off_page: bool,
 }
 
 impl Sketch {
@@ -202,6 +241,7 @@ impl Sketch {
             segments: 0,
             skeleton: Skeleton::default(),
             parents: Vec::new(),
+            attach: Vec::new(),
             nodes: Vec::new(),
             shoots: Vec::new(),
             last: None,
@@ -209,8 +249,45 @@ impl Sketch {
             a_width: rules.width,
             a_roll: 0.0,
             full: false,
+            min_limb: 0.0,
+            room: Room::new(rules.module),
+            off_page: false,
             rules,
         })
+    }
+
+    /// This sketch drawn by a pen `pen_width` mm wide (0, the default:
+    /// no limits from the pen): no limb shorter than [`MIN_LIMB_PENS`]
+    /// pen widths, and a pen width kept clear between the trunk and the
+    /// branches. Set before the stroke comes.
+    pub fn with_pen(mut self, pen_width: f64) -> Sketch {
+        let pen = if pen_width.is_finite() {
+            pen_width.max(0.0)
+        } else {
+            0.0
+        };
+        self.min_limb = MIN_LIMB_PENS * pen;
+        self.room.set_gap(pen);
+        self
+    }
+
+    /// This sketch kept inside the box from `min` to `max` (page mm):
+    /// every outline on it, the stroke followed only while it stays on it.
+    /// Set before the stroke comes.
+    pub fn within(mut self, min: DVec2, max: DVec2) -> Sketch {
+        self.room.set_page(min, max);
+        self
+    }
+
+    /// Whether the stroke has left the page (see [`within`](Self::within)):
+    /// the sketch stopped growing at the last a-node on it.
+    pub fn off_page(&self) -> bool {
+        self.off_page
+    }
+
+    /// The shortest branch segment drawn, mm (see [`with_pen`](Self::with_pen)).
+    pub fn min_limb(&self) -> f64 {
+        self.min_limb
     }
 
     /// Appends `points` (page mm) to the stroke and takes a step for every
@@ -233,6 +310,9 @@ impl Sketch {
             if self.full {
                 return Err(self.budget_error());
             }
+            if self.off_page {
+                break;
+            }
             if !p.is_finite() {
                 return Err(Error::invalid(
                     &self.rules.field,
@@ -242,6 +322,7 @@ impl Sketch {
             let Some(from) = self.last else {
                 self.last = Some(p);
                 self.nodes.push(p.extend(0.0));
+                self.off_page = !self.room.on_page(p.extend(0.0), self.a_width);
                 continue;
             };
             let length = from.distance(p);
@@ -258,6 +339,10 @@ impl Sketch {
                 } else {
                     from + direction * along
                 };
+                if !self.room.on_page(node.extend(0.0), self.a_width) {
+                    self.off_page = true;
+                    return Ok(self.steps() - before);
+                }
                 self.step(node.extend(0.0), direction.extend(0.0))?;
                 self.since = 0.0;
             }
@@ -339,6 +424,8 @@ impl Sketch {
             length: self.rules.module,
             width: self.a_width,
             limb: 0,
+            end: self.nodes.len(),
+            root: Some(self.nodes.len()),
             order: 0,
         };
         let next_width = self.a_width * self.a_handle.width;
@@ -348,7 +435,7 @@ impl Sketch {
                 .a
                 .iter()
                 .any(|b| b.kind != Kind::A && b.handle.at == 1.0);
-            self.new_limb(vec![from, node], vec![self.a_width, next_width], 0, None);
+            self.new_limb(vec![from, node], vec![self.a_width, next_width], 0, None, 0);
             self.skeleton.limbs[0].tip = !at_tip;
         } else {
             let chain = &mut self.skeleton.limbs[0];
@@ -357,6 +444,8 @@ impl Sketch {
         }
         self.segments += 1;
         self.nodes.push(node);
+        let crossed = self.room.add_trunk(from, node, a.width, a.end);
+        self.cut(&crossed);
         self.a_width = next_width;
         self.a_roll = (self.a_roll + self.a_handle.roll).rem_euclid(360.0);
 
@@ -391,23 +480,40 @@ impl Sketch {
             let length = parent.length * h.length;
             let width = parent.width * h.width;
             let tip = base + frame.heading * length;
+            // A branch on the trunk leaves from the node it stands by; one
+            // at the base of a parent that leaves the trunk, from its node.
+            let root = if !rewriting_c || h.at == 0.0 {
+                parent.root
+            } else {
+                None
+            };
+            let room = length >= self.min_limb
+                && self.room.on_page(tip, width)
+                && self.room.clear_of_trunk(base, tip, width, root);
+            if !room {
+                continue;
+            }
             let end_width = match b.kind {
                 Kind::C => width * self.c_end_ratio,
                 _ => 0.0,
             };
-            let limb = if continuation == Some(i) {
+            let (limb, end) = if continuation == Some(i) {
                 let limb = &mut self.skeleton.limbs[parent.limb];
                 limb.points.push(tip);
                 limb.widths.push(end_width);
-                parent.limb
+                (parent.limb, parent.end + 1)
             } else {
-                self.new_limb(
+                let limb = self.new_limb(
                     vec![base, tip],
                     vec![width, end_width],
                     parent.order + 1,
                     Some(parent.limb),
-                )
+                    parent.end,
+                );
+                (limb, 1)
             };
+            self.room
+                .add_branch(base, tip, width, BranchSegment { limb, end, root });
             if h.at == 1.0 && continuation.is_none() {
                 self.skeleton.limbs[parent.limb].tip = false;
             }
@@ -419,6 +525,8 @@ impl Sketch {
                     length,
                     width,
                     limb,
+                    end,
+                    root,
                     order: if limb == parent.limb {
                         parent.order
                     } else {
@@ -436,6 +544,7 @@ impl Sketch {
         widths: Vec<f64>,
         order: u32,
         parent: Option<usize>,
+        attach: usize,
     ) -> usize {
         self.skeleton.limbs.push(Limb {
             points,
@@ -445,6 +554,48 @@ impl Sketch {
             ..Limb::default()
         });
         self.parents.push(parent);
+        self.attach.push(attach);
         self.skeleton.limbs.len() - 1
+    }
+
+    /// Cuts each branch segment in `crossed` off its limb, with the rest
+    /// of the limb beyond it and every branch that grew from what is cut:
+    /// a limb keeps its points before the cut (none: it is gone), and
+    /// the shoots on what is cut stop growing.
+    fn cut(&mut self, crossed: &[BranchSegment]) {
+        if crossed.is_empty() {
+            return;
+        }
+        let limbs = self.skeleton.limbs.len();
+        // How many points each limb keeps (all where it is not cut).
+        let mut kept: Vec<Option<usize>> = vec![None; limbs];
+        // What an earlier cut took is gone already.
+        let standing = crossed
+            .iter()
+            .filter(|c| self.skeleton.limbs[c.limb].points.len() > c.end);
+        for c in standing {
+            let k = kept[c.limb].get_or_insert(c.end);
+            *k = (*k).min(c.end);
+        }
+        // A limb comes after its parent, so one pass carries a cut on to
+        // the branches beyond it, and to theirs.
+        let first = crossed.iter().map(|c| c.limb).min().unwrap_or(limbs);
+        for i in first..limbs {
+            if let Some(p) = self.parents[i] {
+                if kept[p].is_some_and(|k| self.attach[i] >= k) {
+                    kept[i] = Some(0);
+                }
+            }
+            if let Some(k) = kept[i] {
+                let limb = &mut self.skeleton.limbs[i];
+                limb.points.truncate(k);
+                limb.widths.truncate(k);
+                // A cut end is no tip for a flower.
+                limb.tip = false;
+            }
+        }
+        let limbs = &self.skeleton.limbs;
+        self.shoots
+            .retain(|s| limbs[s.limb].points.len() > s.end);
     }
 }

@@ -184,18 +184,23 @@ pub struct SketchRules {
 
 impl SketchRules {
     /// The paper's rules, `a → b, b, c, a` and `c → b, b, c`, with handles
-    /// chosen to look like its fig. 4 from the top, all in the page plane:
-    /// at every node a short leaflet on each side and a side branch that
-    /// leaves at 55°, leafy in turn, and curls gently towards the stroke's
-    /// end (its lineage turns by −10° and shortens by 0.75 at each step, so
-    /// however deep it grows it stays within 3.4 modules of its node). The
-    /// side branches alternate sides from step to step (`a`'s roll 180), as
-    /// the shoots of many plants do, so that the structure is not
-    /// one-sided; the stroke thins by 0.97 per step.
+    /// chosen so that the structure reads as a plant (its fig. 4's growth
+    /// steps, drawn as a botanist would), all in the page plane: at every
+    /// node a short leaflet on each side and a side branch that leaves at
+    /// 55°, leafy in turn. The branch grows by one segment per module of
+    /// stroke after its node, each 0.88 of the one before and turned 5°
+    /// towards the stroke's end, so that it lengthens with the stroke
+    /// still to come (the lowest branches are the longest) and sweeps
+    /// upwards; it stops where a segment would be shorter than the pen
+    /// allows ([`Sketch::with_pen`](super::Sketch::with_pen)). The side
+    /// branches alternate sides from step to step (`a`'s roll 180), as
+    /// the shoots of many plants do; the stroke thins by 0.97 per step.
+    /// Leaflets are thin (a quarter to two fifths of their parent's
+    /// width), so that a pen draws them as single strokes.
     ///
     /// ```text
-    /// a -> b(40, 0, 0.5, 0.45) b(-40, 0, 0.5, 0.45) c(55, 0, 0.7, 0.85) a(0, 180, 0.97, 1)
-    /// c -> b(50, 0, 0.6, 0.6) b(-50, 0, 0.6, 0.6) c(-10, 0, 0.85, 0.75)
+    /// a -> b(40, 0, 0.25, 0.45) b(-40, 0, 0.25, 0.45) c(55, 0, 0.7, 0.7) a(0, 180, 0.97, 1)
+    /// c -> b(50, 0, 0.4, 0.6) b(-50, 0, 0.4, 0.6) c(-5, 0, 0.9, 0.88)
     /// ```
     ///
     /// Module 8 mm, first width 1.5 mm.
@@ -203,15 +208,15 @@ impl SketchRules {
         use Kind::{A, B, C};
         SketchRules {
             a: vec![
-                Branch::new(B, 40.0, 0.0, 0.5, 0.45),
-                Branch::new(B, -40.0, 0.0, 0.5, 0.45),
-                Branch::new(C, 55.0, 0.0, 0.7, 0.85),
+                Branch::new(B, 40.0, 0.0, 0.25, 0.45),
+                Branch::new(B, -40.0, 0.0, 0.25, 0.45),
+                Branch::new(C, 55.0, 0.0, 0.7, 0.7),
                 Branch::new(A, 0.0, 180.0, 0.97, 1.0),
             ],
             c: vec![
-                Branch::new(B, 50.0, 0.0, 0.6, 0.6),
-                Branch::new(B, -50.0, 0.0, 0.6, 0.6),
-                Branch::new(C, -10.0, 0.0, 0.85, 0.75),
+                Branch::new(B, 50.0, 0.0, 0.4, 0.6),
+                Branch::new(B, -50.0, 0.0, 0.4, 0.6),
+                Branch::new(C, -5.0, 0.0, 0.9, 0.88),
             ],
             module: 8.0,
             width: 1.5,

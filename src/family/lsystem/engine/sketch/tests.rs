@@ -5,7 +5,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::{Branch, Kind, Sketch, SketchRules};
+use super::{Branch, Kind, Sketch, SketchRules, MIN_LIMB_PENS};
 use crate::family::lsystem::engine::{Limb, Skeleton};
 
 const FIELD: &str = "layers[0].lsystem[0].sketch";
@@ -251,10 +251,11 @@ fn every_step_grows_the_structure_on_what_exists() {
         let after = sketch.skeleton();
         assert!(after.limbs.len() > before.limbs.len());
         // What was drawn stays: every limb keeps its points and grows
-        // only at its end.
+        // only at its end, or is cut back where the trunk came near.
         for (old, new) in before.limbs.iter().zip(&after.limbs) {
-            assert_eq!(new.points[..old.points.len()], old.points[..]);
-            assert_eq!(new.widths[..old.widths.len()], old.widths[..]);
+            let n = old.points.len().min(new.points.len());
+            assert_eq!(new.points[..n], old.points[..n]);
+            assert_eq!(new.widths[..n], old.widths[..n]);
             assert_eq!(new.order, old.order);
         }
         before = after;
@@ -404,7 +405,7 @@ fn the_rules_read_their_text() {
     assert_eq!(read, paper);
     assert_eq!(
         paper.a_text(),
-        "a -> b(40, 0, 0.5, 0.45) b(-40, 0, 0.5, 0.45) c(55, 0, 0.7, 0.85) a(0, 180, 0.97, 1)"
+        "a -> b(40, 0, 0.25, 0.45) b(-40, 0, 0.25, 0.45) c(55, 0, 0.7, 0.7) a(0, 180, 0.97, 1)"
     );
     // Defaults: the bare paper rule spreads its b's (and c's) both ways.
     let bare = SketchRules::parse("a -> b, b, c, a", "c→b b c c", FIELD).unwrap();
@@ -604,8 +605,13 @@ fn a_point_that_is_not_finite_is_refused() {
 
 #[test]
 fn the_budget_refuses_before_it_is_exceeded() {
-    // c -> c c c triples the shoots at every step.
-    let explosive = || rules("a -> c a", "c -> c(30) c(0) c(-30)", 1.0);
+    // c -> c c c triples the shoots at every step: lifted off the page,
+    // with no width, so that none comes near the trunk and is left out.
+    let explosive = || {
+        let mut r = rules("a -> c(90, 90) a", "c -> c(30) c(0) c(-30)", 1.0);
+        r.width = 0.0;
+        r
+    };
     let mut free = Sketch::new(explosive(), usize::MAX).unwrap();
     free.extend(&straight(8.5)).unwrap();
     let needed = free.segments();
@@ -638,4 +644,172 @@ fn the_budget_refuses_before_it_is_exceeded() {
     let mut sketch = Sketch::new(explosive(), 10_000).unwrap();
     assert!(sketch.extend(&straight(100.0)).is_err());
     assert!(sketch.segments() <= 10_000);
+}
+
+/// A stroke drawn by the pen of a plotter: 0.3 mm.
+const PEN: f64 = 0.3;
+
+fn drawn(rules: SketchRules, stroke: &[DVec2]) -> Sketch {
+    let mut s = Sketch::new(rules, 1_000_000).unwrap().with_pen(PEN);
+    s.extend(stroke).unwrap();
+    s
+}
+
+/// An S, up the page, densely sampled.
+fn s_curve() -> Vec<DVec2> {
+    (0..=400)
+        .map(|i| {
+            let t = f64::from(i) / 400.0;
+            DVec2::new(60.0 + 32.0 * (t * std::f64::consts::TAU).sin(), 185.0 - 160.0 * t)
+        })
+        .collect()
+}
+
+/// A spiral from the outside in, two and a half turns.
+fn spiral() -> Vec<DVec2> {
+    (0..=600)
+        .map(|i| {
+            let t = f64::from(i) / 600.0;
+            let angle = t * 5.0 * std::f64::consts::PI;
+            let r = 50.0 * (1.0 - 0.85 * t);
+            DVec2::new(60.0 + r * angle.cos(), 100.0 + r * angle.sin())
+        })
+        .collect()
+}
+
+/// The documented alternative (docs/SPEC.md §4): a tree whose side
+/// branches branch and grow in turn.
+fn tree() -> SketchRules {
+    let mut r = rules(
+        "a -> b(40, 0, 0.25, 0.45) c(50, 0, 0.7, 0.7) a(0, 180, 0.97, 1)",
+        "c -> c(-4, 0, 0.85, 0.85) c(40, 0, 0.6, 0.55) b(-45, 0, 0.4, 0.5)",
+        8.0,
+    );
+    r.width = 1.5;
+    r
+}
+
+/// The limb's length along its points.
+fn limb_length(limb: &Limb) -> f64 {
+    limb.points.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
+
+/// Whether the segments `p`–`q` and `r`–`s` cross, each passing strictly
+/// through the other (touching at an end is not crossing).
+fn cross(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+    let side = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
+    let (d1, d2) = (side(r, s, p), side(r, s, q));
+    let (d3, d4) = (side(p, q, r), side(p, q, s));
+    d1 * d2 < 0.0 && d3 * d4 < 0.0
+}
+
+#[test]
+fn side_branches_grow_with_the_stroke_still_to_come() {
+    // The lowest side branch of a stroke twice as long is longer, not
+    // only the stroke more branched.
+    let lowest = |modules: f64| {
+        let sketch = drawn(SketchRules::paper(), &straight(modules * 8.0 + 1.0));
+        limb_length(&sketch.skeleton().limbs[side_cs(&sketch)[0]])
+    };
+    let (short, long) = (lowest(5.0), lowest(10.0));
+    assert!(long > 1.4 * short, "{short} mm, then {long} mm");
+    // Along one stroke, the branches shorten towards its end.
+    let sketch = drawn(SketchRules::paper(), &straight(12.0 * 8.0 + 1.0));
+    let skeleton = sketch.skeleton();
+    let lengths: Vec<f64> = side_cs(&sketch)
+        .iter()
+        .map(|&i| limb_length(&skeleton.limbs[i]))
+        .collect();
+    assert!(lengths.windows(2).all(|w| w[0] > w[1]), "{lengths:?}");
+    // Still shorter than the stroke above them: a plant, not a broom.
+    assert!(lengths[0] < 0.6 * 12.0 * 8.0, "{lengths:?}");
+}
+
+#[test]
+fn no_limb_is_shorter_than_the_pen_allows() {
+    let min = MIN_LIMB_PENS * PEN;
+    let strokes = [straight(200.0), wavy(), spiral()];
+    for (rules, stroke) in [SketchRules::paper(), tree()]
+        .iter()
+        .flat_map(|r| strokes.iter().map(move |s| (r, s)))
+    {
+        let sketch = drawn(rules.clone(), stroke);
+        assert_eq!(sketch.min_limb(), min);
+        for limb in &sketch.skeleton().limbs[1..] {
+            for w in limb.points.windows(2) {
+                assert!(w[0].distance(w[1]) >= min - 1e-9, "{limb:?}");
+            }
+        }
+    }
+    // Without a pen the rules grow segments finer than any pen can draw.
+    let free = grown(SketchRules::paper(), &straight(200.0));
+    assert!(free.skeleton().limbs[1..]
+        .iter()
+        .flat_map(|l| l.points.windows(2))
+        .any(|w| w[0].distance(w[1]) < min));
+}
+
+#[test]
+fn no_branch_crosses_the_trunk_however_the_stroke_curves() {
+    let strokes = [("S", s_curve()), ("spiral", spiral()), ("wavy", wavy())];
+    for (rules, (name, stroke)) in [SketchRules::paper(), tree()]
+        .iter()
+        .flat_map(|r| strokes.iter().map(move |s| (r, s)))
+    {
+        let sketch = drawn(rules.clone(), stroke);
+        let skeleton = sketch.skeleton();
+        let trunk: Vec<DVec2> = skeleton.limbs[0].points.iter().map(|&p| flat(p)).collect();
+        let mut branch_segments = 0;
+        for limb in &skeleton.limbs[1..] {
+            for w in limb.points.windows(2) {
+                branch_segments += 1;
+                let (p, q) = (flat(w[0]), flat(w[1]));
+                assert!(
+                    !trunk.windows(2).any(|t| cross(p, q, t[0], t[1])),
+                    "{name}: {p}–{q} crosses the trunk"
+                );
+            }
+        }
+        assert!(branch_segments > 5 * sketch.steps(), "{name}");
+    }
+    // The test sees a crossing, not a touch.
+    let at = DVec2::new;
+    assert!(cross(at(0., 0.), at(2., 2.), at(0., 2.), at(2., 0.)));
+    assert!(!cross(at(0., 0.), at(2., 2.), at(2., 2.), at(4., 0.)));
+}
+
+#[test]
+fn the_sketch_stays_on_its_page() {
+    let (min, max) = (DVec2::new(0.0, 0.0), DVec2::new(100.0, 150.0));
+    // A stroke that runs off the right edge, branches reaching out of
+    // the page on both sides.
+    let stroke = [DVec2::new(20.0, 140.0), DVec2::new(130.0, 20.0)];
+    let mut sketch = Sketch::new(SketchRules::paper(), 1_000_000)
+        .unwrap()
+        .with_pen(PEN)
+        .within(min, max);
+    sketch.extend(&stroke).unwrap();
+    assert!(sketch.off_page());
+    assert!(sketch.steps() > 5);
+    let skeleton = sketch.skeleton();
+    for limb in &skeleton.limbs {
+        for (p, w) in limb.points.iter().zip(&limb.widths) {
+            let r = w / 2.0;
+            assert!(
+                p.x - r >= min.x && p.y - r >= min.y && p.x + r <= max.x && p.y + r <= max.y,
+                "{p} ({w} wide) off the page"
+            );
+        }
+    }
+    // Stopped at the edge: a later point on the page does not restart it.
+    let steps = sketch.steps();
+    assert_eq!(sketch.extend(&[DVec2::new(50.0, 50.0)]).unwrap(), 0);
+    assert_eq!(sketch.steps(), steps);
+    // The same stroke on a page big enough grows on.
+    let mut big = Sketch::new(SketchRules::paper(), 1_000_000)
+        .unwrap()
+        .with_pen(PEN)
+        .within(DVec2::splat(-100.0), DVec2::splat(300.0));
+    big.extend(&stroke).unwrap();
+    assert!(!big.off_page() && big.steps() > steps);
 }
