@@ -61,6 +61,7 @@ pub const ALL: &[Template] = templates![
     "wagara",
     "text-titled",
     "kimono-tangles",
+    "zentangle-tangles",
     "delaunay-lowpoly",
     "lsystem-plant-a",
     "lsystem-plant-d",
