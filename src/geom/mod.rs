@@ -25,6 +25,7 @@ pub mod trace;
 pub mod voronoi;
 
 mod point_index;
+mod segments;
 mod side;
 pub(crate) mod simplify;
 mod spline;
@@ -33,6 +34,7 @@ mod tour;
 mod walk;
 
 pub use point_index::PointIndex;
+pub(crate) use segments::segment_distance_3d;
 pub use side::SideTest;
 pub use spline::{natural_spline, natural_spline_cubics};
 pub use taper::{outline_with_widths, tapered_outline};

@@ -12,6 +12,7 @@ use glam::DVec3;
 
 use super::*;
 use crate::geom::mesh::ray_crosses;
+use crate::geom::segment_distance_3d;
 use crate::rng::Seed;
 
 const R: f64 = 2.0;
@@ -900,40 +901,6 @@ fn tubes_are_closed_round_the_axis() {
     assert_eq!(tube(&axis[..2], 1.0, 1).1.len(), 2 * 3 + 2 * 3);
 }
 
-/// The closest points of segments `a` and `b`: their distance.
-fn segment_distance([p1, q1]: [DVec3; 2], [p2, q2]: [DVec3; 2]) -> f64 {
-    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
-    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
-    let (s, t) = if a <= 1e-18 && e <= 1e-18 {
-        (0.0, 0.0)
-    } else if a <= 1e-18 {
-        (0.0, (f / e).clamp(0.0, 1.0))
-    } else {
-        let c = d1.dot(r);
-        if e <= 1e-18 {
-            ((-c / a).clamp(0.0, 1.0), 0.0)
-        } else {
-            let b = d1.dot(d2);
-            let denom = a * e - b * b;
-            let mut s = if denom > 1e-18 {
-                ((b * f - c * e) / denom).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let mut t = (b * s + f) / e;
-            if t < 0.0 {
-                t = 0.0;
-                s = (-c / a).clamp(0.0, 1.0);
-            } else if t > 1.0 {
-                t = 1.0;
-                s = ((b - c) / a).clamp(0.0, 1.0);
-            }
-            (s, t)
-        }
-    };
-    (p1 + d1 * s).distance(p2 + d2 * t)
-}
-
 /// The clearance the simulation keeps between point `i` of stem `a` and
 /// the axis of stem `b`: 2r, except that a branch grows out of its
 /// parent's axis, its clearance from it growing from 0 over its first
@@ -972,7 +939,7 @@ fn axis_gaps(plant: &Plant, params: &VineParams) -> Vec<Vec<Option<(f64, f64)>>>
                     if a == b && !own_obstacle(params, i, j) {
                         continue;
                     }
-                    let d = segment_distance([p, p], [w[0], w[1]]);
+                    let d = segment_distance_3d(p, p, w[0], w[1]);
                     let k = keep(plant, params, (a, i), b);
                     if best.is_none_or(|(bd, bk)| d - k < bd - bk) {
                         best = Some((d, k));
@@ -1045,7 +1012,7 @@ fn stems_lie_beside_each_other_never_through_each_other() {
                             continue;
                         }
                         let keep = keep(&plant, &params, (a, i), b);
-                        let d = segment_distance([sa[0], sa[1]], [sb[0], sb[1]]);
+                        let d = segment_distance_3d(sa[0], sa[1], sb[0], sb[1]);
                         let least = if keep < twr { 0.6 * keep } else { 0.9 * keep };
                         assert!(
                             d >= least,
