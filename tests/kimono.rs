@@ -2167,3 +2167,210 @@ fn bokashi_lines_thin_out_away_from_where_they_shade_from() {
         assert!(checked.get(kind).copied().unwrap_or(0) >= 2, "{checked:?}");
     }
 }
+
+// ------------------------------------------- the flow and the main tree
+
+/// The kimono compositions: the eight results and the tomesode hem.
+fn compositions() -> impl Iterator<Item = &'static templates::Template> {
+    templates::ALL.iter().filter(|t| {
+        t.name == "tomesode-hem"
+            || t.name
+                .strip_prefix("kimono-")
+                .is_some_and(|n| n.parse::<u32>().is_ok())
+    })
+}
+
+/// The trees of one tree set as drawn.
+struct SetTrees {
+    /// The set's layer and its number in the layer.
+    at: (usize, usize),
+    /// The ids of its paths start with this.
+    prefix: String,
+    /// Each tree's limb paths, by tree id.
+    trees: BTreeMap<String, Vec<BezPath>>,
+}
+
+/// The limb paths of every tree of each tree set of `spec`, by set.
+fn trees_by_set(spec: &ValidSpec, scene: &Scene) -> Vec<SetTrees> {
+    let paths = page_paths(scene);
+    let mut out = Vec::new();
+    for (li, layer) in spec.layers.iter().enumerate() {
+        for (si, set) in layer.trees.iter().enumerate() {
+            let name = set.id.clone().unwrap_or_else(|| format!("trees-{si}"));
+            let prefix = format!("{}.{name}.", scene.layers[li].id);
+            let mut trees: BTreeMap<String, Vec<BezPath>> = BTreeMap::new();
+            for p in paths.iter().filter(|p| p.id.starts_with(&prefix)) {
+                if let Some((tree, _)) = p.id.split_once(".limb-") {
+                    trees
+                        .entry(tree.to_string())
+                        .or_default()
+                        .push(p.path.clone());
+                }
+            }
+            out.push(SetTrees {
+                at: (li, si),
+                prefix,
+                trees,
+            });
+        }
+    }
+    out
+}
+
+/// The upper region line of `spec` on the page (drawn in the scene's
+/// transform `t`), as a test of the side above it.
+fn upper_line(spec: &ValidSpec, t: Affine) -> Option<(moyo::geom::SideTest, Vec<Point>)> {
+    let mut points: Vec<Point> = spec
+        .lines
+        .upper
+        .as_ref()?
+        .iter()
+        .map(|[x, y]| t * Point::new(*x, *y))
+        .collect();
+    if points.first()?.x > points.last()?.x {
+        points.reverse();
+    }
+    let line = moyo::geom::natural_spline(&points);
+    Some((
+        moyo::geom::SideTest::new(&line, moyo::geom::Side::Left),
+        points,
+    ))
+}
+
+/// The transform from description mm to the page of `scene`'s paths.
+fn page_transform(scene: &Scene) -> Affine {
+    let mut t = None;
+    scene.visit_paths(|_, _, m| {
+        t.get_or_insert(m);
+    });
+    t.unwrap_or(Affine::IDENTITY)
+}
+
+#[test]
+fn sets_with_reach_grow_to_within_it_of_the_upper_line_at_its_peaks() {
+    let mut checked = 0;
+    for t in compositions() {
+        let spec = t.spec().unwrap();
+        let scene = build(&spec);
+        let Some((upper, controls)) = upper_line(&spec, page_transform(&scene)) else {
+            continue;
+        };
+        // The peaks: control points higher than both neighbours.
+        let peaks: Vec<Point> = controls
+            .windows(3)
+            .filter(|w| w[1].y < w[0].y && w[1].y < w[2].y)
+            .map(|w| w[1])
+            .collect();
+        assert!(peaks.len() >= 2, "{}: {} peaks", t.name, peaks.len());
+        for SetTrees {
+            at: (li, si),
+            prefix,
+            trees,
+        } in trees_by_set(&spec, &scene)
+        {
+            let Some(reach) = spec.layers[li].trees[si].reach else {
+                continue;
+            };
+            let ink: Vec<Point> = trees
+                .values()
+                .flatten()
+                .flat_map(|p| samples(p, 8))
+                .collect();
+            let headroom = |q: &Point| -upper.signed_distance(*q);
+            let highest = ink.iter().map(headroom).fold(f64::INFINITY, f64::min);
+            assert!(
+                (-1.0..=reach + 1.0).contains(&highest),
+                "{}: {prefix} comes {highest:.1} mm below the upper line, reach {reach}",
+                t.name
+            );
+            // The default design's front (the measure: its ink
+            // stood 50–60 mm below both peaks): its main tree reaches the
+            // line near the peak it stands under (its companion falls short
+            // by up to the size spread). Elsewhere a tree may first touch
+            // the line beside its peak.
+            if li != 0 || t.name != templates::DEFAULT {
+                continue;
+            }
+            let main = spec.layers[li].trees[si]
+                .vary
+                .as_ref()
+                .map(|v| format!("{prefix}tree-{}", v.main));
+            for (id, paths) in trees
+                .iter()
+                .filter(|(id, _)| main.is_none() || main.as_ref() == Some(*id))
+            {
+                let root = paths[0].elements()[0].end_point().unwrap();
+                for peak in peaks.iter().filter(|p| (p.x - root.x).abs() <= 40.0) {
+                    let near = paths
+                        .iter()
+                        .flat_map(|p| samples(p, 8))
+                        .filter(|q| (q.x - peak.x).abs() <= 40.0)
+                        .map(|q| headroom(&q))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        near <= reach + 1.0,
+                        "{}: {id} comes only {near:.1} mm near the peak at x {:.0}, reach {reach}",
+                        t.name,
+                        peak.x
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 1, "{checked} peaks checked");
+}
+
+#[test]
+fn no_two_trees_of_a_varied_set_are_the_same_drawing() {
+    let mut checked = 0;
+    for t in compositions() {
+        let spec = t.spec().unwrap();
+        let scene = build(&spec);
+        for SetTrees {
+            at: (li, si),
+            prefix,
+            trees,
+        } in trees_by_set(&spec, &scene)
+        {
+            if spec.layers[li].trees[si].vary.is_none() {
+                continue;
+            }
+            // Each tree's extent around its root (the start of its first
+            // limb): left, right, top and bottom, in mm.
+            let extents: Vec<(String, [f64; 4], f64)> = trees
+                .iter()
+                .map(|(id, paths)| {
+                    let root = paths[0].elements()[0].end_point().unwrap();
+                    let b = paths
+                        .iter()
+                        .map(Shape::bounding_box)
+                        .reduce(|a, b| a.union(b))
+                        .unwrap();
+                    let e = [b.x0 - root.x, b.x1 - root.x, b.y0 - root.y, b.y1 - root.y];
+                    (id.clone(), e, b.width().max(b.height()))
+                })
+                .collect();
+            for (i, (a, ea, sa)) in extents.iter().enumerate() {
+                for (b, eb, sb) in &extents[..i] {
+                    let differ = ea
+                        .iter()
+                        .zip(eb)
+                        .map(|(x, y)| (x - y).abs())
+                        .fold(0.0, f64::max);
+                    assert!(
+                        differ >= 0.02 * sa.max(*sb),
+                        "{}: {a} and {b} differ by only {differ:.1} mm",
+                        t.name
+                    );
+                    checked += 1;
+                }
+            }
+            assert!(
+                trees.len() >= 2 || spec.layers[li].trees[si].count < 2,
+                "{prefix}"
+            );
+        }
+    }
+    assert!(checked >= 20, "{checked} pairs checked");
+}

@@ -62,6 +62,12 @@ impl Flow {
         self.lines[usize::from(!upper)].as_ref()
     }
 
+    /// How far `p` lies below the upper region line, in mm along the
+    /// line's normal (negative beyond it); `None` without an upper line.
+    pub(crate) fn headroom(&self, p: Point) -> Option<f64> {
+        self.upper.as_ref().map(|t| -t.signed_distance(p))
+    }
+
     /// True when `p` may not be part of a plant: beyond the upper line, or
     /// — for one growing downward — beyond the lower line.
     pub(crate) fn blocks(&self, p: Point, downward: bool) -> bool {

@@ -19,7 +19,8 @@ use crate::error::Result;
 use crate::family::kimono::tree::{Growth, LimbLook, Skeleton};
 use crate::geom::{PathWalker, Side, TOLERANCE};
 use crate::motif::{flow_line, Context};
-use crate::scene::{Color, Group, Style};
+use crate::rng::RandomStream;
+use crate::scene::{Color, Group, PathBudget, Style};
 use crate::spec::{Growth as Orientation, TreeOverride, TreeSetSpec};
 
 /// Where one tree of a set stands and how it is scaled.
@@ -97,6 +98,106 @@ pub(crate) struct GrownTree<'s> {
     pub scale: f64,
 }
 
+/// How one tree of a set differs from the set as written: the main tree
+/// and its companions of [`VarySpec`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Variation {
+    /// Size factor.
+    pub scale: f64,
+    /// Extra turn, degrees clockwise.
+    pub turn: f64,
+    /// Generations fewer than the set's.
+    pub fewer: u32,
+    /// Grown mirrored.
+    pub mirror: bool,
+}
+
+impl Variation {
+    const NONE: Variation = Variation {
+        scale: 1.0,
+        turn: 0.0,
+        fewer: 0,
+        mirror: false,
+    };
+
+    /// Tree `i`'s variation; a companion draws it from `rng`. With
+    /// `reach` the trees are sized to the line, the main tree reaching it
+    /// and the companions falling short by up to the size spread; without,
+    /// the main tree is `main_scale` times the companions' size.
+    pub(super) fn of(set: &TreeSetSpec, i: usize, rng: &mut RandomStream) -> Variation {
+        let Some(v) = &set.vary else {
+            return Variation::NONE;
+        };
+        let main = v.main as usize;
+        if i == main {
+            let scale = if set.reach.is_some() { 1.0 } else { v.main_scale };
+            return Variation { scale, ..Variation::NONE };
+        }
+        let scale = if set.reach.is_some() {
+            1.0 - v.size * rng.unit()
+        } else {
+            1.0 + rng.symmetric(v.size)
+        };
+        Variation {
+            scale,
+            turn: rng.symmetric(v.turn),
+            fewer: rng.below(v.generations as usize + 1) as u32,
+            mirror: v.mirror && i.abs_diff(main) % 2 == 1,
+        }
+    }
+}
+
+/// The order the trees of a set are painted in: by number, the main tree
+/// last so that it stands in front of its companions.
+fn paint_order(set: &TreeSetSpec) -> Vec<usize> {
+    let main = set.vary.as_ref().map(|v| v.main as usize);
+    let mut order: Vec<usize> = (0..set.count as usize).filter(|i| Some(*i) != main).collect();
+    order.extend(main.filter(|m| *m < set.count as usize));
+    order
+}
+
+/// Factors tried when sizing a tree to the upper line: from a third to
+/// four times its size, in steps of 8 %, then halved between the last two.
+const REACH_SMALLEST: f64 = 0.3;
+const REACH_LARGEST: f64 = 4.0;
+const REACH_STEP: f64 = 1.08;
+const REACH_HALVINGS: u32 = 10;
+
+/// The size factor that brings a tree within `reach` mm of the upper line:
+/// the smallest tried whose highest limb is that close. `headroom(k)` is
+/// the least distance below the line of the tree grown `k` times its size
+/// (`None` when it has no limbs or there is no line). A tree that comes no
+/// closer keeps the factor that came closest.
+fn fit_to_line(
+    reach: f64,
+    mut headroom: impl FnMut(f64) -> Result<Option<f64>>,
+) -> Result<f64> {
+    let mut best = (f64::INFINITY, 1.0);
+    let mut below = REACH_SMALLEST;
+    let mut k = REACH_SMALLEST;
+    while k <= REACH_LARGEST {
+        match headroom(k)? {
+            Some(h) if h <= reach => {
+                let mut above = k;
+                for _ in 0..REACH_HALVINGS {
+                    let mid = 0.5 * (below + above);
+                    if headroom(mid)?.is_some_and(|h| h <= reach) {
+                        above = mid;
+                    } else {
+                        below = mid;
+                    }
+                }
+                return Ok(above);
+            }
+            Some(h) if h < best.0 => best = (h, k),
+            _ => {}
+        }
+        below = k;
+        k *= REACH_STEP;
+    }
+    Ok(best.1)
+}
+
 /// Grows and draws a tree set into a group with id `group_id`, one unit
 /// of progress per tree.
 ///
@@ -104,8 +205,10 @@ pub(crate) struct GrownTree<'s> {
 /// so changing one set or tree leaves the others as they were. The final
 /// adjustment of a tree (by its full id) hides it with its flowers and
 /// leaves, or moves its root, turns and scales it before it grows, so the
-/// region lines still hold. Each tree is a [solid](Group::solid) group of
-/// limbs, followed by its leaves and flowers ([`bloom`]).
+/// region lines still hold. A set with `reach` sizes each upward tree to
+/// the upper line; one with `vary` makes a main tree and companions
+/// ([`Variation`]). Each tree is a [solid](Group::solid) group of limbs,
+/// followed by its leaves and flowers ([`bloom`]).
 pub(super) fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
     let mut group = Group::new(group_id);
     let limbs = &cx.layer().limbs;
@@ -117,7 +220,9 @@ pub(super) fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) 
         ..Style::default()
     };
     let overrides = overrides_by_tree(set);
-    for (i, mut place) in placements(set).into_iter().enumerate() {
+    let mut places = placements(set);
+    for i in paint_order(set) {
+        let place = &mut places[i];
         let full_id = format!("{group_id}.tree-{i}");
         let adjusted = cx.adjust().take_without_motif(&full_id, "a tree")?;
         if adjusted.is_some_and(|a| a.hide) {
@@ -125,6 +230,8 @@ pub(super) fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) 
             cx.advance(1);
             continue;
         }
+        let variation = Variation::of(set, i, &mut cx.stream(&format!("{full_id}.vary")));
+        place.direction = turn(place.direction, variation.turn);
         if let Some(a) = adjusted {
             let [dx, dy] = a.offset.unwrap_or([0.0, 0.0]);
             place.root += Vec2::new(dx, dy);
@@ -136,23 +243,38 @@ pub(super) fn tree_set(set: &TreeSetSpec, group_id: &str, cx: &mut Context<'_>) 
             None => set.params.clone(),
         };
         let mut p = params.resolve();
-        p.trunk *= place.scale;
+        p.generations = p.generations.saturating_sub(variation.fewer);
         let downward = place.direction.y > 0.0;
         let flow = cx.flow();
         let blocked = |q: Point| flow.blocks(q, downward);
+        let growth = Growth {
+            root: place.root,
+            direction: place.direction,
+            blocked: &blocked,
+            mirror: variation.mirror,
+        };
+        let what = format!("tree {full_id}");
         let stream = cx.stream(&full_id);
-        let skeleton = tree::grow(
-            set.rule,
-            &p,
-            &Growth {
-                root: place.root,
-                direction: place.direction,
-                blocked: &blocked,
-            },
-            stream,
-            cx.budget(),
-            &format!("tree {full_id}"),
-        )?;
+        let grow_at = |k: f64, budget: &mut PathBudget| {
+            let mut q = p;
+            q.trunk *= k;
+            tree::grow(set.rule, &q, &growth, stream.clone(), budget, &what)
+        };
+        let fitted = match set.reach {
+            Some(reach) if !downward => {
+                let trial = cx.budget().clone();
+                fit_to_line(reach, |k| {
+                    let skeleton = grow_at(place.scale * k, &mut trial.clone())?;
+                    Ok(skeleton
+                        .vertices()
+                        .filter_map(|v| flow.headroom(v))
+                        .min_by(f64::total_cmp))
+                })?
+            }
+            _ => 1.0,
+        };
+        place.scale *= fitted * variation.scale;
+        let skeleton = grow_at(place.scale, cx.budget())?;
         let look = LimbLook {
             style: limbs.style,
             width: limbs.width * place.scale,

@@ -6,7 +6,7 @@ use super::*;
 use crate::motif::flora::Library;
 use crate::motif::Flow;
 use crate::spec::{
-    AdjustSpec, Format, Points, Rhythm, SceneSpec, TreeOverride, TreeParams, TreeRule,
+    AdjustSpec, Format, Points, Rhythm, SceneSpec, TreeOverride, TreeParams, TreeRule, VarySpec,
 };
 
 /// Runs `f` on layer `l` (at `depth`, default limbs) of a scene with seed 9
@@ -45,6 +45,8 @@ fn set(centre: Points, count: u32) -> TreeSetSpec {
             ..TreeParams::default()
         },
         rhythm: Default::default(),
+        reach: None,
+        vary: None,
         overrides: Vec::new(),
         flowers: None,
         leaves: Default::default(),
@@ -565,4 +567,173 @@ fn a_single_ground_tile_is_drawn_as_its_seamless_ground() {
     // Two motifs alternate as tiles, as before.
     let paths = background_paths("[\"seigaiha\", \"kikko\"]");
     assert!(paths.iter().any(|(id, _)| id.contains(".tile-")));
+}
+
+// ------------------------------------------- the flow and the main tree
+
+/// Draws set `s` as layer `l` of a scene with seed 9 under the region
+/// lines `lines` (a TOML `[lines]` table, or nothing).
+fn draw_under(lines: &str, s: &TreeSetSpec) -> Group {
+    let spec = SceneSpec::parse(
+        &format!("version = 1\nseed = 9\n{lines}[[layers]]\nname = \"l\"\n"),
+        Format::Toml,
+    )
+    .unwrap();
+    let lib = Library::new();
+    let flow = Flow::new(&spec.lines);
+    let mut report = |_| {};
+    let mut cx = Context::new(&spec, &lib, &flow, &mut report);
+    cx.enter_layer((0, &spec.layers[0]), "l", 0);
+    let group = tree_set(s, "l.t", &mut cx).unwrap();
+    cx.finish().unwrap();
+    group
+}
+
+/// The limb paths of each tree of a drawn set, by tree id, in paint order.
+fn trees_of(group: &Group) -> Vec<(String, Vec<kurbo::BezPath>)> {
+    group
+        .children
+        .iter()
+        .filter_map(|n| match n {
+            crate::scene::Node::Group(g) if g.id.contains(".tree-") => Some(g),
+            _ => None,
+        })
+        .map(|g| {
+            let paths = g
+                .children
+                .iter()
+                .filter_map(|n| match n {
+                    crate::scene::Node::Path(p) => Some(p.path.clone()),
+                    crate::scene::Node::Group(_) => None,
+                })
+                .collect();
+            (g.id.clone(), paths)
+        })
+        .collect()
+}
+
+/// A tree's drawing moved so that its root is at the origin, rounded to
+/// 0.01 mm: two trees that are the same drawing give the same list.
+fn drawing(paths: &[kurbo::BezPath]) -> Vec<(i64, i64)> {
+    let root = paths
+        .first()
+        .and_then(|p| p.elements().first().and_then(|e| e.end_point()))
+        .unwrap_or(Point::ZERO);
+    paths
+        .iter()
+        .flat_map(|p| p.elements().iter().filter_map(|e| e.end_point()).collect::<Vec<_>>())
+        .map(|q| (((q.x - root.x) * 100.0).round() as i64, ((q.y - root.y) * 100.0).round() as i64))
+        .collect()
+}
+
+/// An upper line with one peak at (100, 10), over a root at (100, 190).
+const PEAK: &str = "[lines]\nupper = [[0, 60], [100, 10], [200, 60]]\n";
+
+#[test]
+fn a_set_with_reach_grows_each_tree_to_within_that_distance_of_the_upper_line() {
+    let flow_spec = SceneSpec::parse(&format!("version = 1\n{PEAK}"), Format::Toml).unwrap();
+    let flow = Flow::new(&flow_spec.lines);
+    let highest = |g: &Group| {
+        trees_of(g)
+            .iter()
+            .flat_map(|(_, paths)| paths.iter().flat_map(|p| p.elements().to_vec()))
+            .filter_map(|e| e.end_point())
+            .filter_map(|q| flow.headroom(q))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut s = set(vec![[50.0, 190.0], [150.0, 190.0]], 1);
+    let plain = highest(&draw_under(PEAK, &s));
+    assert!(plain > 40.0, "as written the tree stays low: {plain:.1} mm");
+    for reach in [2.0, 6.0, 15.0] {
+        s.reach = Some(reach);
+        let h = highest(&draw_under(PEAK, &s));
+        // Outline points stand half a tip width beside the last vertex.
+        assert!(
+            (-0.5..=reach + 0.5).contains(&h),
+            "reach {reach}: the highest limb is {h:.2} mm below the line"
+        );
+    }
+}
+
+#[test]
+fn companions_differ_from_their_main_tree_and_from_each_other() {
+    let mut s = set(vec![[0.0, 190.0], [300.0, 190.0]], 5);
+    let drawings = |s: &TreeSetSpec| -> Vec<Vec<(i64, i64)>> {
+        trees_of(&draw_under("", s))
+            .iter()
+            .map(|(_, paths)| drawing(paths))
+            .collect()
+    };
+    s.vary = Some(VarySpec {
+        main: 2,
+        main_scale: 1.3,
+        size: 0.15,
+        turn: 8.0,
+        generations: 1,
+        mirror: true,
+    });
+    let varied = drawings(&s);
+    assert_eq!(varied.len(), 5);
+    for i in 0..5 {
+        for j in 0..i {
+            assert_ne!(varied[i], varied[j], "trees {i} and {j} are one drawing");
+        }
+    }
+    // The main tree is painted last, in front, and is the largest.
+    let trees = trees_of(&draw_under("", &s));
+    assert_eq!(trees.last().unwrap().0, "l.t.tree-2");
+    let height = |paths: &[kurbo::BezPath]| {
+        paths
+            .iter()
+            .map(kurbo::Shape::bounding_box)
+            .reduce(|a, b| a.union(b))
+            .map_or(0.0, |b| b.height())
+    };
+    let main = height(&trees.last().unwrap().1);
+    for (id, paths) in &trees[..4] {
+        assert!(height(paths) < main, "{id} is taller than the main tree");
+    }
+}
+
+#[test]
+fn a_mirrored_companion_grows_its_branches_on_the_other_side() {
+    let mut s = set(vec![[0.0, 190.0], [200.0, 190.0]], 2);
+    s.vary = Some(VarySpec {
+        main: 0,
+        main_scale: 1.0,
+        size: 0.0,
+        turn: 0.0,
+        generations: 0,
+        mirror: true,
+    });
+    let trees = trees_of(&draw_under("", &s));
+    // tree-1 is painted first, tree-0 (the main tree) last.
+    assert_eq!(trees[0].0, "l.t.tree-1");
+    // Every end point relative to its tree's root (x 50 and 150), sorted,
+    // in 0.01 mm.
+    let points = |paths: &[kurbo::BezPath], root_x: f64, flip: f64| {
+        let mut v: Vec<(i64, i64)> = paths
+            .iter()
+            .flat_map(|p| p.elements().to_vec())
+            .filter_map(|e| e.end_point())
+            .map(|q| {
+                (
+                    (flip * (q.x - root_x) * 100.0).round() as i64,
+                    ((q.y - 190.0) * 100.0).round() as i64,
+                )
+            })
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    let main = points(&trees[1].1, 50.0, 1.0);
+    assert_ne!(main, points(&trees[0].1, 150.0, 1.0));
+    let flipped = points(&trees[0].1, 150.0, -1.0);
+    assert_eq!(main.len(), flipped.len());
+    assert!(
+        main.iter()
+            .zip(&flipped)
+            .all(|(p, q)| (p.0 - q.0).abs() <= 1 && (p.1 - q.1).abs() <= 1),
+        "the companion is the main tree mirrored"
+    );
 }

@@ -152,6 +152,16 @@ pub struct TreeSetSpec {
     /// all alike, evenly spaced).
     #[serde(default, skip_serializing_if = "Rhythm::is_even")]
     pub rhythm: Rhythm,
+    /// Growth toward the upper region line (the flow as the composition's
+    /// rule, [000 §2.1]): every upward tree is sized so that its highest
+    /// limb comes within this many mm of the line (0.5–200), a tree under
+    /// a peak taller than one under a valley. Default: sized as written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reach: Option<f64>,
+    /// A main tree and companions that differ from it (default: trees
+    /// alike but for their jitter).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vary: Option<VarySpec>,
     /// Per-tree adjustments by id (`tree-0`, `tree-1`, …).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub overrides: Vec<TreeOverride>,
@@ -165,6 +175,74 @@ pub struct TreeSetSpec {
 
 fn default_count() -> u32 {
     1
+}
+
+/// The main tree of a set and its companions ([000 §2.2]: a main tree,
+/// larger and in front, and the others around it, each a drawing of its
+/// own). Each companion draws its differences from its own random stream.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VarySpec {
+    /// The main tree's number (default 0): painted last, so it stands in
+    /// front of its companions.
+    #[serde(default)]
+    pub main: u32,
+    /// Size of the main tree against its companions (0.1–10, default
+    /// 1.25); with `reach`, the companions shrink and the main tree
+    /// reaches the line.
+    #[serde(default = "default_main_scale")]
+    pub main_scale: f64,
+    /// Companions' sizes differ by up to ± this fraction (0–0.9,
+    /// default 0.15).
+    #[serde(default = "default_size_spread")]
+    pub size: f64,
+    /// Companions' turns differ by up to ± this many degrees (0–90,
+    /// default 8).
+    #[serde(default = "default_turn_spread")]
+    pub turn: f64,
+    /// Companions have up to this many generations fewer than the set
+    /// (0–16, default 1).
+    #[serde(default = "default_generation_spread")]
+    pub generations: u32,
+    /// Every other companion grows mirrored, its branches on the other
+    /// sides (default true).
+    #[serde(default = "yes")]
+    pub mirror: bool,
+}
+
+fn default_main_scale() -> f64 {
+    1.25
+}
+
+fn default_size_spread() -> f64 {
+    0.15
+}
+
+fn default_turn_spread() -> f64 {
+    8.0
+}
+
+fn default_generation_spread() -> u32 {
+    1
+}
+
+impl VarySpec {
+    fn check(&self, f: &str, count: u32) -> Result<()> {
+        if self.main >= count.max(1) {
+            return Err(Error::invalid(
+                format!("{f}.main"),
+                format!(
+                    "the main tree is one of the set's trees: 0 … {}, got {}",
+                    count.saturating_sub(1),
+                    self.main
+                ),
+            ));
+        }
+        range(&format!("{f}.main_scale"), self.main_scale, 0.1, 10.0)?;
+        range(&format!("{f}.size"), self.size, 0.0, 0.9)?;
+        range(&format!("{f}.turn"), self.turn, 0.0, 90.0)?;
+        range(&format!("{f}.generations"), self.generations, 0, 16)
+    }
 }
 
 /// The rhythm of a tree set along its centre line (beyond the source,
@@ -306,6 +384,12 @@ impl Family for TreeSetSpec {
         range(&format!("{f}.rotate"), self.rotate, -360.0, 360.0)?;
         self.params.check(&format!("{f}.params"))?;
         self.rhythm.check(&format!("{f}.rhythm"), self.count)?;
+        if let Some(r) = self.reach {
+            range(&format!("{f}.reach"), r, 0.5, 200.0)?;
+        }
+        if let Some(v) = &self.vary {
+            v.check(&format!("{f}.vary"), self.count)?;
+        }
         let mut seen = BTreeSet::new();
         for (j, o) in self.overrides.iter().enumerate() {
             let of = format!("{f}.overrides[{j}]");

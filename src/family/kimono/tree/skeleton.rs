@@ -91,6 +91,9 @@ pub(crate) struct Growth<'a> {
     pub direction: Vec2,
     /// True for vertices where growth must stop (beyond a region line).
     pub blocked: &'a dyn Fn(Point) -> bool,
+    /// Grow the mirror image: every turn the other way, so each branch
+    /// leaves on the other side.
+    pub mirror: bool,
 }
 
 /// Grows a tree of `rule`. Every limb is taken from `budget` before it is
@@ -106,6 +109,7 @@ pub(crate) fn grow(
     let mut g = Grower {
         p: params,
         blocked: growth.blocked,
+        mirror: growth.mirror,
         rng,
         budget,
         what,
@@ -173,6 +177,7 @@ fn sign(side: Side) -> f64 {
 struct Grower<'a> {
     p: &'a ResolvedTreeParams,
     blocked: &'a dyn Fn(Point) -> bool,
+    mirror: bool,
     rng: RandomStream,
     budget: &'a mut PathBudget,
     what: &'a str,
@@ -183,6 +188,7 @@ impl Grower<'_> {
     /// `Rotate(v · ratio, angle)` with jitter.
     fn step(&mut self, v: Vec2, ratio: f64, angle_deg: f64) -> Vec2 {
         let len = ratio * (1.0 + self.rng.symmetric(self.p.jitter_length));
+        let angle_deg = if self.mirror { -angle_deg } else { angle_deg };
         let a = (angle_deg + self.rng.symmetric(self.p.jitter_angle)).to_radians();
         let (s, c) = a.sin_cos();
         let v = v * len;
@@ -196,9 +202,14 @@ impl Grower<'_> {
         !(p.x.abs() <= limit && p.y.abs() <= limit) || (self.blocked)(p)
     }
 
-    fn push(&mut self, limb: Limb) -> Result<usize> {
+    /// Adds a limb; a mirrored tree's limbs are labelled with the side
+    /// they really leave towards.
+    fn push(&mut self, mut limb: Limb) -> Result<usize> {
         let what = self.what;
         self.budget.take(1, || what.to_string())?;
+        if self.mirror {
+            limb.side = limb.side.map(Side::opposite);
+        }
         self.limbs.push(limb);
         Ok(self.limbs.len() - 1)
     }
@@ -431,7 +442,10 @@ impl Grower<'_> {
             .p
             .base
             .iter()
-            .map(|[x, y]| root + (right * *x + direction * *y) * unit)
+            .map(|[x, y]| {
+                let x = if self.mirror { -*x } else { *x };
+                root + (right * x + direction * *y) * unit
+            })
             .collect();
         let base = crate::geom::natural_spline(&control);
         let samples = PathWalker::new(&base, TOLERANCE).sample_even(gens as usize);
