@@ -811,8 +811,9 @@ fn without_description(svg: &str) -> String {
 #[test]
 fn voronoi_sites_pinned_as_points_draw_the_same_svg() {
     // The stained-glass window: two tables (lead and glass) share their
-    // Poisson-disk sites, relaxed four times. Pinned as a designer would,
-    // in the text: the distribution and spacing give way to the points.
+    // rose-window sites. Pinned as a designer would, in the text: the
+    // distribution gives way to the points; petals, spacing and tracery
+    // stay, as they place the tracery rings.
     let template = templates::get("voronoi-stained-glass").unwrap();
     let (spec, library) = (template.spec().unwrap(), template.library().unwrap());
     let lead = moyo::project::voronoi_sites(&spec, &library, 0, 0).unwrap();
@@ -820,7 +821,7 @@ fn voronoi_sites_pinned_as_points_draw_the_same_svg() {
     assert_eq!(lead, glass);
     assert!(lead.len() > 50, "{} sites", lead.len());
     let points: Vec<String> = lead.iter().map(|[x, y]| format!("[{x}, {y}]")).collect();
-    let generated = "distribution = \"poisson\"\nspacing = 12\n";
+    let generated = "distribution = \"rose\"\n";
     assert_eq!(template.text.matches(generated).count(), 2);
     let pinned = template
         .text

@@ -74,6 +74,11 @@ pub struct VoronoiSpec {
     /// sizes its stipples. Default: every dot `dot`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dot_range: Option<[f64; 2]>,
+    /// With `"cracks"`: the width of the first crack and the narrowest
+    /// any crack gets, mm (each 0.05–20, the first no smaller; default
+    /// `[1.6, 0.7]`); each generation of cracks is 0.8 of the one before.
+    #[serde(default = "default_crack")]
+    pub crack: [f64; 2],
 }
 
 /// One kind of line a Voronoi pattern draws.
@@ -93,6 +98,12 @@ pub enum Draw {
     Sites,
     /// One pen-down line through every site (nearest neighbour, then 2-opt).
     Tour,
+    /// Mud cracks: the region split again and again, largest piece first,
+    /// by curved cracks that end on older ones (T-junctions), narrower
+    /// each generation and tapering; drawn as the outlines of the plates
+    /// between them, about `sites.spacing` across (the sites themselves
+    /// take no part).
+    Cracks,
 }
 
 /// How sites relax.
@@ -162,6 +173,22 @@ pub struct SitesSpec {
     /// [`crate::geom::density::Formula`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<String>,
+    /// With `image`: how much of the weight comes from the image's edges
+    /// (where it changes: an eye, a mouth, a face's outline) rather than
+    /// its darkness, 0–1 (default 0). Sites then gather on edges and
+    /// features, so a low-poly mesh keeps them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edges: Option<f64>,
+    /// With `"rose"`: how many cells the first ring holds; every ring
+    /// holds a multiple, so the window turns into itself by 360° ÷
+    /// `petals` (3–64, default 12).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub petals: Option<u32>,
+    /// With `"rose"`: the width of the rings of stone tracery cut from the
+    /// region where the cells' count doubles, mm (0–20, default 0: none).
+    /// Kept with `points` pinned from a rose, as the window's frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tracery: Option<f64>,
     /// The sites given by hand, `[[x, y], …]` in mm from the top left
     /// corner inside the margins, as every point of a description (1 to
     /// 1,000,000 points, each within ±100,000 mm); instead of
@@ -188,6 +215,9 @@ impl Default for SitesSpec {
             jitter: None,
             image: None,
             density: None,
+            edges: None,
+            petals: None,
+            tracery: None,
             points: None,
         }
     }
@@ -225,6 +255,11 @@ pub enum Distribution {
     /// twice it. Even without looking regular.
     #[default]
     Poisson,
+    /// A rose window: rings of sites about the centre of the region's
+    /// bounds, `petals` in the first, the first ring's cells about
+    /// `spacing` wide, the count doubling outwards (with `tracery` rings
+    /// there); radially symmetric, ordered by ring.
+    Rose,
 }
 
 /// The most relaxation steps.
@@ -242,6 +277,13 @@ fn default_draw() -> Vec<Draw> {
 
 fn default_inset() -> f64 {
     1.0
+}
+
+/// The widths of the first and the narrowest crack, mm, when not given.
+pub const DEFAULT_CRACK: [f64; 2] = [1.6, 0.7];
+
+fn default_crack() -> [f64; 2] {
+    DEFAULT_CRACK
 }
 
 fn default_dot() -> f64 {
@@ -268,6 +310,11 @@ impl SitesSpec {
     /// The spacing of `grid` and `poisson` sites, mm.
     pub fn spacing(&self) -> f64 {
         self.spacing.unwrap_or(DEFAULT_SPACING)
+    }
+
+    /// The petals of a `rose`.
+    pub fn petals(&self) -> u32 {
+        self.petals.unwrap_or(12)
     }
 
     /// The jitter of `grid` sites (0–1).
@@ -303,6 +350,21 @@ impl SitesSpec {
         if let Some(j) = self.jitter {
             range(&format!("{f}.jitter"), j, 0.0, 1.0)?;
         }
+        if let Some(n) = self.petals {
+            range(&format!("{f}.petals"), n, 3, 64)?;
+        }
+        if let Some(t) = self.tracery {
+            range(&format!("{f}.tracery"), t, 0.0, 20.0)?;
+        }
+        if let Some(e) = self.edges {
+            range(&format!("{f}.edges"), e, 0.0, 1.0)?;
+            if self.image.is_none() {
+                return Err(Error::invalid(
+                    format!("{f}.edges"),
+                    "weighs the image's edges: give sites.image",
+                ));
+            }
+        }
         if self.image.as_deref().is_some_and(|i| i.trim().is_empty()) {
             return Err(Error::invalid(format!("{f}.image"), "needs a file name"));
         }
@@ -330,8 +392,11 @@ impl SitesSpec {
                 ));
             }
         }
+        // A rose's tracery rings are placed by its petals and spacing,
+        // sites given or not.
+        let rose = self.tracery.is_some();
         for (key, set) in [
-            ("spacing", self.spacing.is_some()),
+            ("spacing", self.spacing.is_some() && !rose),
             ("image", self.image.is_some()),
             ("density", self.density.is_some()),
         ] {
@@ -342,7 +407,7 @@ impl SitesSpec {
                 ));
             }
         }
-        if self.spacing.is_some() && !lbg && !self.is_weighted() {
+        if self.spacing.is_some() && !lbg && !self.is_weighted() && !rose {
             return Err(Error::invalid(
                 format!("{f}.spacing"),
                 "does not apply to given points relaxed by unweighted lloyd steps (it takes \
@@ -373,11 +438,14 @@ impl SitesSpec {
             (Distribution::Uniform, true) => &["count", "spacing"],
             (Distribution::Grid, _) => &["spacing", "jitter"],
             (Distribution::Poisson, _) => &["spacing"],
+            (Distribution::Rose, _) => &["spacing", "petals", "tracery"],
         };
         for (key, set) in [
             ("count", self.count.is_some()),
             ("spacing", self.spacing.is_some()),
             ("jitter", self.jitter.is_some()),
+            ("petals", self.petals.is_some()),
+            ("tracery", self.tracery.is_some()),
         ] {
             if set && !allowed.contains(&key) {
                 return Err(Error::invalid(
@@ -407,6 +475,7 @@ impl Distribution {
             Distribution::Uniform => "uniform",
             Distribution::Grid => "grid",
             Distribution::Poisson => "poisson",
+            Distribution::Rose => "rose",
         }
     }
 }
@@ -433,7 +502,9 @@ impl VoronoiSpec {
         let s = &self.sites;
         let relaxes = self.relax > 0;
         let lbg = self.relaxation == RelaxationMethod::Lbg;
-        let spacing = if !(relaxes && (lbg || s.is_weighted())) {
+        let spacing = if s.tracery.is_some() {
+            Some(s.spacing())
+        } else if !(relaxes && (lbg || s.is_weighted())) {
             None
         } else if s.points.is_some() || s.distribution() == Distribution::Uniform {
             // Unset, relaxation takes the spacing of evenly spread sites,
@@ -450,6 +521,9 @@ impl VoronoiSpec {
                 jitter: None,
                 image: s.image.clone().filter(|_| relaxes),
                 density: s.density.clone().filter(|_| relaxes),
+                edges: s.edges.filter(|_| relaxes),
+                petals: s.petals,
+                tracery: s.tracery,
                 points: Some(points),
             },
             ..self.clone()
@@ -486,7 +560,7 @@ impl Family for VoronoiSpec {
         if self.draw.is_empty() {
             return Err(Error::invalid(
                 format!("{f}.draw"),
-                "draws nothing: list one or more of cells, delaunay, inset, sites, tour",
+                "draws nothing: list one or more of cells, delaunay, inset, sites, tour, cracks",
             ));
         }
         for (i, d) in self.draw.iter().enumerate() {
@@ -497,6 +571,15 @@ impl Family for VoronoiSpec {
         range(&format!("{f}.inset"), self.inset, 0.01, 100.0)?;
         range(&format!("{f}.round"), self.round, 0.0, 50.0)?;
         range(&format!("{f}.dot"), self.dot, 0.05, 50.0)?;
+        let [first, narrowest] = self.crack;
+        range(&format!("{f}.crack[0]"), first, 0.05, 20.0)?;
+        range(&format!("{f}.crack[1]"), narrowest, 0.05, 20.0)?;
+        if narrowest > first {
+            return Err(Error::invalid(
+                format!("{f}.crack"),
+                format!("runs from the first crack's width to the narrowest: {narrowest} is larger than {first}"),
+            ));
+        }
         if let Some([light, dark]) = self.dot_range {
             let field = format!("{f}.dot_range");
             range(&format!("{field}[0]"), light, 0.05, 50.0)?;

@@ -9,13 +9,14 @@ use crate::family::gesture::{point_list, Change, Gesture, Gestures};
 use crate::spec::VoronoiSpec;
 
 /// The keys of `[sites]` that spread sites rather than give them.
-const SPREADING: [&str; 6] = [
+const SPREADING: [&str; 7] = [
     "distribution",
     "count",
     "spacing",
     "jitter",
     "image",
     "density",
+    "edges",
 ];
 
 impl Gestures for VoronoiSpec {

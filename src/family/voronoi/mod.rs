@@ -14,26 +14,34 @@
 //!   (a plotter would draw shared edges twice if every cell were closed),
 //!   the region's outline with it, as few strokes as the cells allow;
 //! - `delaunay`: the constrained Delaunay triangulation of the sites and
-//!   the region's outline, cut to the region, chained into strokes;
+//!   the region's outline, refined so that no triangle is a sliver, inside
+//!   the region (see [`mesh`]), chained into strokes;
 //! - `inset`: each cell shrunk (and rounded), one closed path a cell, ids
 //!   `inset-<site>` so `[[adjust]]` can hide one;
 //! - `sites`: a small circle at each site, ids `site-<i>`;
-//! - `tour`: one pen-down line through every site.
+//! - `tour`: one pen-down line through every site;
+//! - `cracks`: mud cracks (see [`cracks`]), the region split by curved
+//!   cracks that end on older ones, drawn as the plates' outlines, ids
+//!   `plate-<i>`.
 
+pub(crate) mod cracks;
 pub(crate) mod description;
+mod features;
+pub(crate) mod mesh;
+mod rose;
 #[cfg(feature = "studio")]
 mod gesture;
 
-use std::collections::BTreeMap;
+use std::borrow::Cow;
 
 use kurbo::{BezPath, Point, Shape};
 
 use crate::error::{Error, Result};
-use crate::geom::density::{Density, Formula};
+use crate::geom::density::{Density, Formula, GreyImage};
 use crate::geom::offset::offset;
 use crate::geom::region::Region;
 use crate::geom::voronoi::{
-    cell_network, chains, constrained_delaunay, delaunay_edges, distinct, relax, CellOptions,
+    cell_network, delaunay_edges, distinct, relax, CellOptions,
     Diagram, Domain, Lbg, Relaxation, Relaxed,
 };
 use crate::geom::{sample, tour, TOLERANCE};
@@ -52,11 +60,12 @@ use crate::spec::{Distribution, Draw, RelaxationMethod, VoronoiSpec, MAX_SITES};
 /// points none of which lies inside the region; the path budget; an SVG
 /// region file that was not loaded.
 pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Group> {
-    let region = region(&spec.region, cx)?;
+    let region = window(spec, cx)?;
     let domain = Domain::new(&region, TOLERANCE)?;
     let options = CellOptions::DEFAULT.with_max_sites(MAX_SITES);
     let formula = formula(spec, cx)?;
-    let density = density(spec, &region, formula.as_ref(), cx)?;
+    let image = image(spec, cx)?;
+    let density = density(spec, &region, formula.as_ref(), image.as_deref(), cx)?;
     let sites = sites(spec, group_id, &region, density.as_ref(), cx)?;
     let sites = relaxed(
         spec,
@@ -94,7 +103,7 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
             Draw::Delaunay => numbered(
                 &id,
                 "stroke",
-                triangulation(&sites, &region, &options, spec.outline)?,
+                mesh::triangulate(&sites, &region)?.strokes(spec.outline),
             ),
             Draw::Inset => inset(spec, diagram.as_ref().expect("made for inset"), &id)?,
             Draw::Sites => {
@@ -112,6 +121,7 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
                     .collect()
             }
             Draw::Tour => vec![(format!("{id}.line"), tour_path(&sites, &edges))],
+            Draw::Cracks => numbered(&id, "plate", plates(spec, group_id, &region, cx)?),
         };
         cx.take_paths(paths.len(), || format!("voronoi {id}"))?;
         for (path_id, path) in paths {
@@ -143,10 +153,26 @@ pub(super) fn starting_sites(
     group_id: &str,
     cx: &Context<'_>,
 ) -> Result<Vec<Point>> {
-    let region = region(&spec.region, cx)?;
+    let region = window(spec, cx)?;
     let formula = formula(spec, cx)?;
-    let density = density(spec, &region, formula.as_ref(), cx)?;
+    let image = image(spec, cx)?;
+    let density = density(spec, &region, formula.as_ref(), image.as_deref(), cx)?;
     sites(spec, group_id, &region, density.as_ref(), cx)
+}
+
+/// The region the pattern fills: the description's, less a rose's
+/// tracery rings (see [`rose`]).
+fn window(spec: &VoronoiSpec, cx: &Context<'_>) -> Result<Region> {
+    let region = region(&spec.region, cx)?;
+    match spec.sites.tracery {
+        Some(width) if width > 0.0 => rose_plan(spec, &region).cut(&region, width),
+        _ => Ok(region),
+    }
+}
+
+/// The rose window the sites spread over `region` (its bounds) make.
+fn rose_plan(spec: &VoronoiSpec, region: &Region) -> rose::Rose {
+    rose::plan(region.bounds(), spec.sites.petals(), spec.sites.spacing())
 }
 
 /// The density formula of the sites, parsed.
@@ -158,21 +184,32 @@ fn formula(spec: &VoronoiSpec, cx: &Context<'_>) -> Result<Option<Formula>> {
         .transpose()
 }
 
+/// The image that weighs the sites, as `sites.image` and `sites.edges`
+/// say (see [`features`]).
+fn image<'a>(spec: &VoronoiSpec, cx: &Context<'a>) -> Result<Option<Cow<'a, GreyImage>>> {
+    let Some(name) = &spec.sites.image else {
+        return Ok(None);
+    };
+    let image = cx.library().image(name)?;
+    features::weighed(image, spec.sites.edges.unwrap_or(0.0)).map(Some)
+}
+
 /// What weighs the sites, when `image` or `density` is given: the image
 /// times the formula over the region's bounds, checked to be above 0
 /// somewhere.
-fn density<'d, 'a: 'd>(
+fn density<'d>(
     spec: &VoronoiSpec,
     region: &Region,
     formula: Option<&'d Formula>,
-    cx: &Context<'a>,
+    image: Option<&'d GreyImage>,
+    cx: &Context<'_>,
 ) -> Result<Option<Density<'d>>> {
     if !spec.sites.is_weighted() {
         return Ok(None);
     }
     let mut density = Density::new(region.bounds());
-    if let Some(name) = &spec.sites.image {
-        density = density.with_image(cx.library().image(name)?);
+    if let Some(image) = image {
+        density = density.with_image(image);
     }
     if let Some(f) = formula {
         density = density.with_formula(f);
@@ -201,14 +238,11 @@ fn offered(
             .collect()
     };
     if spec.draw.contains(&Draw::Delaunay) && diagram.is_none() {
-        let coarse = Domain::new(region, TRIANGULATION_OUTLINE)?;
-        let cdt = constrained_delaunay(sites, &coarse, options)?;
-        // A sliver along a curved outline may enclose no area to speak
-        // of: it holds nothing to fill.
-        return Ok(cdt
+        let mesh = mesh::triangulate(sites, region)?;
+        return Ok(mesh
             .triangles
             .iter()
-            .filter_map(|t| Region::polygon(t).ok())
+            .filter_map(|&t| Region::polygon(&mesh.corners(t)).ok())
             .collect());
     }
     match diagram {
@@ -348,7 +382,31 @@ fn name(draw: Draw) -> &'static str {
         Draw::Inset => "inset",
         Draw::Sites => "sites",
         Draw::Tour => "tour",
+        Draw::Cracks => "cracks",
     }
+}
+
+/// The plates of mud the region cracks into, from the table's own stream
+/// (see [`sites`]), after the sites' own.
+fn plates(
+    spec: &VoronoiSpec,
+    group_id: &str,
+    region: &Region,
+    cx: &mut Context<'_>,
+) -> Result<Vec<BezPath>> {
+    let table_id = group_id.rsplit('.').next().unwrap_or(group_id);
+    let mut rng = cx.stream(&format!("voronoi/{table_id}/cracks"));
+    let cracked = cracks::crack(region, spec.sites.spacing(), spec.crack, &mut rng)
+        .map_err(|e| site_error(e, spec, region.area(), cx))?;
+    cx.note(
+        group_id,
+        format!(
+            "{} cracks, {} plates",
+            cracked.cracks.len(),
+            cracked.plates.len()
+        ),
+    );
+    Ok(cracked.plates)
 }
 
 fn numbered(id: &str, what: &str, paths: Vec<BezPath>) -> Vec<(String, BezPath)> {
@@ -395,6 +453,13 @@ fn sites(
                 grid.retain(|p| rng.unit() < d.at(*p));
             }
             Ok(grid)
+        }
+        (Distribution::Rose, _) => {
+            // The window's bounds are the description's region's, not
+            // those of what the tracery leaves (the same here: the rings
+            // lie inside).
+            let plan = rose_plan(spec, region);
+            Ok(sample::inside(region, &plan.sites))
         }
         (Distribution::Poisson, None) => {
             let r = s.spacing();
@@ -517,48 +582,6 @@ fn inset(spec: &VoronoiSpec, diagram: &Diagram, id: &str) -> Result<Vec<(String,
         }
     }
     Ok(out)
-}
-
-/// How closely the triangulation's outline follows a curved region (mm):
-/// its vertices are triangle corners, so a fine flattening would fan
-/// slivers along every curve; half a millimetre keeps triangles whole and
-/// the outline within a pen's width of the curve.
-const TRIANGULATION_OUTLINE: f64 = 0.5;
-
-/// The constrained Delaunay triangulation of the sites and the region's
-/// outline (flattened within [`TRIANGULATION_OUTLINE`]), cut to the
-/// region: every edge once, chained into strokes. Inside a bay or around a
-/// hole no edge crosses out of the region, and the outline (when
-/// `outline`) closes the triangles at the edge (a low-poly look to the
-/// very border).
-fn triangulation(
-    sites: &[Point],
-    region: &Region,
-    options: &CellOptions,
-    outline: bool,
-) -> Result<Vec<BezPath>> {
-    let coarse = Domain::new(region, TRIANGULATION_OUTLINE)?;
-    let cdt = constrained_delaunay(sites, &coarse, options)?;
-    // Outline vertices join the sites as points; lines name them by
-    // their exact coordinates, which the triangulation gives back as put in.
-    let key = |p: Point| (p.x.to_bits(), p.y.to_bits());
-    let mut points = sites.to_vec();
-    let mut index: BTreeMap<(u64, u64), usize> = BTreeMap::new();
-    for (i, p) in sites.iter().enumerate() {
-        index.entry(key(*p)).or_insert(i);
-    }
-    let mut edges = cdt.between_sites.clone();
-    let border: &[kurbo::Line] = if outline { &cdt.outline } else { &[] };
-    for line in cdt.to_outline.iter().chain(border) {
-        let [a, b] = [line.p0, line.p1].map(|p| {
-            *index.entry(key(p)).or_insert_with(|| {
-                points.push(p);
-                points.len() - 1
-            })
-        });
-        edges.push([a.min(b), a.max(b)]);
-    }
-    Ok(chains(&points, &edges))
 }
 
 /// One line through every site, 2-opt tried among Delaunay neighbours.

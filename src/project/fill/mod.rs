@@ -27,7 +27,7 @@ use crate::scene::{Color, Group, Layer, Node, Pen, Scene, Stats};
 use crate::spec::{
     Distribution, Draw, LayerSpec, LimitsSpec, MarginSpec, OutputSpec, PageSpec, PaperSize,
     PenSpec, PlotSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec, SitesSpec,
-    ValidSpec, VoronoiSpec, ZentangleSpec, FORMAT_VERSION,
+    ValidSpec, VoronoiSpec, ZentangleSpec, DEFAULT_CRACK, FORMAT_VERSION,
 };
 
 /// What a fill draws: one of the ways the Voronoi family draws its sites.
@@ -554,6 +554,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         // The drawing's own pen draws the shapes' outlines.
         outline: job.outline,
         dot_range: None,
+        crack: DEFAULT_CRACK,
     });
     let zentangle = (job.pattern == FillPattern::Zentangle).then(|| ZentangleSpec {
         id: Some("pattern".into()),
