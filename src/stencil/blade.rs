@@ -20,7 +20,8 @@ use crate::geom::subpath::subpaths;
 pub const CORNER_REACH: f64 = 0.25;
 
 /// Places (centres of bounding boxes) where `region` is narrower than
-/// `width` mm, for parts larger than a tenth of a `width`-wide square.
+/// `width` mm (less `tolerance`), for parts larger than a tenth of a
+/// `width`-wide square.
 ///
 /// # Errors
 /// When an offset fails (coordinates out of range).
