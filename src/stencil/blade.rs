@@ -20,7 +20,8 @@ use crate::geom::subpath::subpaths;
 pub const CORNER_REACH: f64 = 0.25;
 
 /// Places (centres of bounding boxes) where `region` is narrower than
-/// `width` mm, for parts larger than a tenth of a `width`-wide square.
+/// `width` mm (less `tolerance`), for parts larger than a tenth of a
+/// `width`-wide square and wider on average than four times `tolerance`.
 ///
 /// # Errors
 /// When an offset fails (coordinates out of range).
@@ -34,10 +35,16 @@ pub fn narrow_places(region: &Region, width: f64, tolerance: f64) -> Result<Vec<
         tolerance,
     )?;
     let thin = region.difference(&opened);
+    // Along the sides of a feature that passes, the two offsets leave
+    // slivers as thin as their own error: a part counts when its mean
+    // width (2·area / perimeter) is above that.
     Ok(thin
         .components()
         .into_iter()
-        .filter(|c| c.area() > 0.1 * width * width)
+        .filter(|c| {
+            let area = c.area();
+            area > 0.1 * width * width && 2.0 * area > 4.0 * tolerance * c.perimeter(tolerance)
+        })
         .map(|c| c.bounds().center())
         .collect())
 }

@@ -147,6 +147,31 @@ pub fn bridge(
     Ok((islands, bridges))
 }
 
+/// `cut` with every island narrower than `min_width` mm (its widest
+/// inscribed circle) cut away whole, and the places of those specks:
+/// paper the blade cannot leave, too small to hold with a bridge.
+pub fn cut_specks(cut: &Region, min_width: f64, tolerance: f64) -> (Region, Vec<Point>) {
+    let mut kept = BezPath::new();
+    let mut specks = Vec::new();
+    for contour in subpaths(cut.path()).map(|s| s.to_path()) {
+        if contour.area() < 0.0 {
+            let island = Region::from_normalised(contour.reverse_subpaths());
+            let (centre, radius) = pole_of_inaccessibility(&island, tolerance)
+                .unwrap_or((contour.bounding_box().center(), 0.0));
+            if 2.0 * radius < min_width {
+                specks.push(centre);
+                continue;
+            }
+        }
+        kept.extend(contour.iter());
+    }
+    if specks.is_empty() {
+        (cut.clone(), specks)
+    } else {
+        (Region::from_normalised(kept), specks)
+    }
+}
+
 /// The ends of the bridges from the island bounded by `outline` to the
 /// outer contour `wall` of the cut-out around it.
 fn island_bridges(

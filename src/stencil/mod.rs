@@ -6,8 +6,9 @@
 //! 1. [`cutouts`]: every stroke becomes the shape its pen draws (at least
 //!    [`StencilOptions::min_feature`] wide when [`StencilOptions::widen`]
 //!    is set), all unioned; the sheet (the page) minus them is the paper;
-//! 2. [`bridges`]: every *island* — a piece of paper that would fall out —
-//!    gets bridges (*tsuri*) across the narrowest gap to the paper around
+//! 2. [`bridges`]: islands narrower than the smallest feature are cut away
+//!    whole (specks the blade cannot leave); every other *island* — a
+//!    piece of paper that would fall out — gets bridges (*tsuri*) across the narrowest gap to the paper around
 //!    it, more along long outlines; the bridges are taken out of the
 //!    cut-outs;
 //! 3. the sheet is checked: still one piece ([`Report::loose`] lists any
@@ -144,6 +145,8 @@ pub struct Report {
     pub islands: Vec<Island>,
     /// Every bridge.
     pub bridges: Vec<Bridge>,
+    /// Islands narrower than the smallest feature, cut away whole.
+    pub specks: Vec<Point>,
     /// A point inside every part that still falls out after bridging
     /// (empty when the sheet is one piece).
     pub loose: Vec<Point>,
@@ -184,6 +187,11 @@ impl fmt::Display for Report {
                 island.across
             )?;
         }
+        places(
+            f,
+            "specks of paper narrower than the blade cut away at",
+            &self.specks,
+        )?;
         if self.loose.is_empty() {
             writeln!(f, "the sheet is one piece")?;
         } else {
@@ -235,6 +243,7 @@ pub fn make(scene: &Scene, options: &StencilOptions) -> Result<Stencil> {
     if !paper.bounds().contains_rect(cut.bounds()) {
         cut = cut.intersection(&paper);
     }
+    let (cut, specks) = bridges::cut_specks(&cut, options.min_feature, tolerance);
     let (islands, bridges) =
         bridges::bridge(&cut, options.bridge, options.bridge_every, tolerance)?;
     let strips = bridges
@@ -256,6 +265,7 @@ pub fn make(scene: &Scene, options: &StencilOptions) -> Result<Stencil> {
     let report = Report {
         islands,
         bridges,
+        specks,
         loose,
         narrow_paper: blade::narrow_places(&sheet, options.min_feature, tolerance)?,
         narrow_cuts: blade::narrow_places(&holes, options.min_feature, tolerance)?,
