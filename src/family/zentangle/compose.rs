@@ -67,7 +67,7 @@ use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::float::single::SingleFloatOverlay;
 use i_overlay::mesh::float::stroke::offset::StrokeOffset;
 use i_overlay::mesh::float::style::{LineCap, LineJoin, StrokeStyle};
-use kurbo::{BezPath, PathEl, Point, Rect, Shape as _};
+use kurbo::{BezPath, ParamCurve, PathEl, Point, Rect, Shape as _};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 
@@ -111,6 +111,12 @@ pub(crate) struct Composed {
 /// `tolerance` mm for clipping and for their ink (non-finite or
 /// non-positive means [`TOLERANCE`]). See the [module docs](self).
 ///
+/// A mark that crosses the region's edge leaves pieces of its line that
+/// end on the edge; those shorter than `fragment` mm (after later fills
+/// hid what they hide) are dropped, and take no ink: the stubs and
+/// corner brackets of an element clipped to a sliver are debris to the
+/// eye, not part of a tangle.
+///
 /// A fill mark whose path encloses no area (a degenerate outline) paints
 /// nothing; its path is still drawn.
 ///
@@ -122,6 +128,7 @@ pub(crate) fn compose(
     marks: &[Mark],
     pen_width: f64,
     tolerance: f64,
+    fragment: f64,
 ) -> Result<Composed> {
     if !(pen_width.is_finite() && pen_width > 0.0) {
         return Err(Error::invalid(
@@ -163,7 +170,13 @@ pub(crate) fn compose(
     let mut strokes = Vec::new();
     let mut inks: Vec<Option<Region>> = Vec::with_capacity(marks.len());
     for (i, m) in marks.iter().enumerate() {
-        let mut visible = inside_region.clip(&m.path).inside;
+        let cut = inside_region.clip(&m.path);
+        // Where the mark crosses the edge: the ends its inside and outside
+        // pieces share.
+        let on_edge: Vec<Point> = ends(&cut.outside)
+            .filter(|p| ends(&cut.inside).any(|q| q.distance(*p) < EDGE_EPS))
+            .collect();
+        let mut visible = cut.inside;
         if !visible.is_empty() {
             for j in fills.meeting(m.path.bounding_box()) {
                 if j <= i {
@@ -173,7 +186,13 @@ pub(crate) fn compose(
                     visible = visible.iter().flat_map(|l| c.clip(l).outside).collect();
                 }
             }
-            visible.retain(|l| l.perimeter(tolerance) >= tolerance);
+            visible.retain(|l| {
+                let length = l.perimeter(tolerance);
+                length >= tolerance
+                    && (length >= fragment
+                        || !ends(std::slice::from_ref(l))
+                            .any(|p| on_edge.iter().any(|q| q.distance(p) < EDGE_EPS)))
+            });
         }
         let ink = ink(&visible, pen_width / 2.0, tolerance);
         inks.push((!ink.is_empty()).then_some(ink));
@@ -269,6 +288,41 @@ pub(crate) fn compose(
         white,
         black,
     })
+}
+
+/// Ends closer than this (mm) are the same cut point of a mark's line.
+const EDGE_EPS: f64 = 1e-6;
+
+/// The first and last points of each line.
+fn ends(lines: &[BezPath]) -> impl Iterator<Item = Point> + '_ {
+    lines.iter().flat_map(|l| {
+        let first = match l.elements().first() {
+            Some(PathEl::MoveTo(p)) => Some(*p),
+            _ => None,
+        };
+        first.into_iter().chain(l.segments().last().map(|s| s.eval(1.0)))
+    })
+}
+
+/// The white parts of `region` left when `lines` are inked over it whole
+/// (each part at least `pen_width` wide): for lines drawn as they are,
+/// such as a border on the region's own edge, which [`compose`] would
+/// clip to pieces.
+pub(crate) fn uninked(
+    region: &Region,
+    lines: &[BezPath],
+    pen_width: f64,
+    tolerance: f64,
+) -> Vec<Region> {
+    let ink = ink(lines, pen_width / 2.0, tolerance);
+    let left = overlay(
+        &polygons(region, tolerance),
+        &polygons(&ink, tolerance),
+        OverlayRule::Difference,
+    );
+    let mut pieces = Vec::new();
+    push_pieces(&mut pieces, &left, None, pen_width, tolerance);
+    pieces.into_iter().map(|p| p.region).collect()
 }
 
 /// Closed polygons as i_overlay takes them.
@@ -554,7 +608,7 @@ mod tests {
     fn a_line_across_a_square_splits_it_in_two() {
         let sq = rect(0.0, 0.0, 10.0, 10.0);
         // Longer than the square: clipped to it.
-        let c = compose(&sq, &[line((-5.0, 4.0), (15.0, 4.0))], PEN, TOL).unwrap();
+        let c = compose(&sq, &[line((-5.0, 4.0), (15.0, 4.0))], PEN, TOL, 0.0).unwrap();
         assert_eq!(c.white.len(), 2);
         assert!(c.white.iter().all(|p| p.inside.is_none()));
         assert!((length(&c.strokes) - 10.0).abs() < 1e-9);
@@ -571,7 +625,7 @@ mod tests {
     fn a_white_square_makes_a_piece_of_its_own_and_a_hole() {
         let sq = rect(0.0, 0.0, 20.0, 20.0);
         let inner = Rect::new(5.0, 5.0, 15.0, 15.0).to_path(0.0);
-        let c = compose(&sq, &[filled(inner, Paint::White)], PEN, TOL).unwrap();
+        let c = compose(&sq, &[filled(inner, Paint::White)], PEN, TOL, 0.0).unwrap();
         assert_eq!(c.white.len(), 2);
         let bg = &c.white[0];
         assert_eq!(bg.inside, None);
@@ -600,7 +654,7 @@ mod tests {
             line((0.0, 10.0), (20.0, 10.0)),
             filled(Rect::new(5.0, 5.0, 15.0, 15.0).to_path(0.0), Paint::Black),
         ];
-        let c = compose(&sq, &marks, PEN, TOL).unwrap();
+        let c = compose(&sq, &marks, PEN, TOL, 0.0).unwrap();
         assert_eq!(c.black.len(), 1);
         assert!((c.black[0].area() - 100.0).abs() < 1e-6);
         // The line shows only outside the square: 2 × 5, plus the outline.
@@ -613,7 +667,7 @@ mod tests {
             .all(|p| !p.region.contains(Point::new(10.0, 12.0))));
         check_partition(&sq, &c);
         // Drawn the other way round, the line lies over the square.
-        let c = compose(&sq, &[marks[1].clone(), marks[0].clone()], PEN, TOL).unwrap();
+        let c = compose(&sq, &[marks[1].clone(), marks[0].clone()], PEN, TOL, 0.0).unwrap();
         assert!((length(&c.strokes) - (20.0 + 40.0)).abs() < 1e-6);
     }
 
@@ -627,7 +681,7 @@ mod tests {
             filled(disc(10.0), Paint::White),
             filled(disc(5.0), Paint::Black),
         ];
-        let c = compose(&sq, &marks, PEN, TOL).unwrap();
+        let c = compose(&sq, &marks, PEN, TOL, 0.0).unwrap();
         assert_eq!(c.black.len(), 2);
         let black: f64 = c.black.iter().map(Region::area).sum();
         let pi = std::f64::consts::PI;
@@ -677,12 +731,54 @@ mod tests {
             let (x, y) = ((k % 3) as f64 * 16.0 - 16.0, (k / 3) as f64 * 18.0 - 9.0);
             all.extend(element(s, fill, k as u64, (x, y), 9.0));
         }
-        let c = compose(&disc, &all, PEN, TOL).unwrap();
+        let c = compose(&disc, &all, PEN, TOL, 0.0).unwrap();
         assert!(c.white.len() > 10 && !c.black.is_empty());
         check_partition(&disc, &c);
         check_strokes_inside(&disc, &c);
         // Deterministic.
-        assert_eq!(compose(&disc, &all, PEN, TOL).unwrap(), c);
+        assert_eq!(compose(&disc, &all, PEN, TOL, 0.0).unwrap(), c);
+    }
+
+    /// The visible lines with an end on the region's edge that are
+    /// shorter than `min`.
+    fn stubs(region: &Region, c: &Composed, min: f64) -> usize {
+        c.strokes
+            .iter()
+            .filter(|s| {
+                s.perimeter(1e-6) < min
+                    && ends(std::slice::from_ref(*s)).any(|p| distance_to(region.path(), p) < 0.05)
+            })
+            .count()
+    }
+
+    #[test]
+    fn no_short_piece_of_a_clipped_element_is_left_on_the_edge() {
+        // Small elements all over a disc's rim: clipped, some leave stubs
+        // and corner brackets shorter than four pen widths.
+        let disc = Region::new(
+            Circle::new((0.0, 0.0), 20.0).to_path(1e-4),
+            FillRule::NonZero,
+        )
+        .unwrap();
+        let mut all = Vec::new();
+        for k in 0..40 {
+            let a = f64::from(k) * 0.157;
+            let shape = [Shape::Sq, Shape::Tr, Shape::Msq1, Shape::C2][k as usize % 4];
+            let fill = if k % 3 == 0 { Paint::Black } else { Paint::White };
+            let centre = (20.6 * a.cos(), 20.6 * a.sin());
+            all.extend(element(shape, fill, k as u64, centre, 1.5));
+        }
+        let min = 4.0 * PEN;
+        let kept = compose(&disc, &all, PEN, TOL, 0.0).unwrap();
+        assert!(stubs(&disc, &kept, min) > 5, "{}", stubs(&disc, &kept, min));
+        let trimmed = compose(&disc, &all, PEN, TOL, min).unwrap();
+        assert_eq!(stubs(&disc, &trimmed, min), 0);
+        // Longer pieces on the edge, and short lines inside, stay.
+        assert!(length(&trimmed.strokes) > 0.5 * length(&kept.strokes));
+        let inside = [line((0.0, 0.0), (0.5, 0.0))];
+        assert_eq!(compose(&disc, &inside, PEN, TOL, min).unwrap().strokes.len(), 1);
+        // What is dropped takes no ink: the white left is as if never drawn.
+        assert!(white_area(&trimmed) > white_area(&kept));
     }
 
     #[test]
@@ -691,7 +787,7 @@ mod tests {
         // region's hole lies inside the square.
         let ring = rect(0.0, 0.0, 30.0, 30.0).difference(&rect(12.0, 12.0, 18.0, 18.0));
         let sq = filled(Rect::new(5.0, 5.0, 25.0, 25.0).to_path(0.0), Paint::White);
-        let c = compose(&ring, &[sq], PEN, TOL).unwrap();
+        let c = compose(&ring, &[sq], PEN, TOL, 0.0).unwrap();
         let own: Vec<&Piece> = c.white.iter().filter(|p| p.inside == Some(0)).collect();
         assert_eq!(own.len(), 1);
         assert!(!own[0].region.contains(Point::new(15.0, 15.0)));
@@ -703,15 +799,15 @@ mod tests {
     fn marks_outside_the_region_draw_nothing() {
         let sq = rect(0.0, 0.0, 10.0, 10.0);
         let far = element(Shape::Msq2, Paint::Black, 1, (50.0, 50.0), 5.0);
-        let c = compose(&sq, &far, PEN, TOL).unwrap();
+        let c = compose(&sq, &far, PEN, TOL, 0.0).unwrap();
         assert!(c.strokes.is_empty() && c.black.is_empty());
         assert_eq!(c.white.len(), 1);
         assert_eq!(c.white[0].inside, None);
         assert!((c.white[0].region.area() - 100.0).abs() < 1e-9);
         // Nothing at all, and an empty region.
-        assert_eq!(compose(&sq, &[], PEN, TOL).unwrap().white.len(), 1);
+        assert_eq!(compose(&sq, &[], PEN, TOL, 0.0).unwrap().white.len(), 1);
         assert_eq!(
-            compose(&Region::empty(), &far, PEN, TOL).unwrap(),
+            compose(&Region::empty(), &far, PEN, TOL, 0.0).unwrap(),
             Composed::default()
         );
     }
@@ -725,6 +821,7 @@ mod tests {
             &[line((0.0, 5.0), (10.0, 5.0)), line((0.0, 5.5), (10.0, 5.5))],
             PEN,
             TOL,
+            0.0,
         )
         .unwrap();
         assert_eq!(c.white.len(), 2);
@@ -734,6 +831,7 @@ mod tests {
             &[line((0.0, 5.0), (10.0, 5.0)), line((0.0, 5.7), (10.0, 5.7))],
             PEN,
             TOL,
+            0.0,
         )
         .unwrap();
         assert_eq!(c.white.len(), 3);
@@ -743,17 +841,17 @@ mod tests {
     fn bad_input_is_an_error() {
         let sq = rect(0.0, 0.0, 10.0, 10.0);
         for w in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-            assert!(compose(&sq, &[], w, TOL).is_err());
+            assert!(compose(&sq, &[], w, TOL, 0.0).is_err());
         }
         let bad = line((0.0, 0.0), (f64::NAN, 1.0));
-        let e = compose(&sq, &[bad], PEN, TOL).unwrap_err().to_string();
+        let e = compose(&sq, &[bad], PEN, TOL, 0.0).unwrap_err().to_string();
         assert!(e.contains("marks[0]"), "{e}");
         // A fill that encloses nothing still draws its line.
         let flat = filled(
             Line::new((-1.0, -1.0), (11.0, 11.0)).to_path(0.0),
             Paint::Black,
         );
-        let c = compose(&sq, &[flat], PEN, 0.0).unwrap();
+        let c = compose(&sq, &[flat], PEN, 0.0, 0.0).unwrap();
         assert!(c.black.is_empty() && c.white.len() == 2);
     }
 
@@ -799,7 +897,7 @@ mod tests {
         );
         let page = rect(-15.0, -15.0, 130.0, 110.0);
         let t = std::time::Instant::now();
-        let c = compose(&page, &all, PEN, TOL).unwrap();
+        let c = compose(&page, &all, PEN, TOL, 0.0).unwrap();
         eprintln!(
             "compose({} marks): {:?}, {} white pieces, {} black parts",
             all.len(),

@@ -11,6 +11,8 @@
 //! procedure of the region under a point before the automatic ones (or,
 //! with `after`, once they are done).
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
@@ -99,6 +101,48 @@ pub struct ZentangleSpec {
     /// largest region is always filled next, no global contrast).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tone: Option<ToneSpec>,
+    /// How sections are filled (default `"sampler"`): `"tangles"`, each section (a
+    /// part of the region the string or the `lines` make) by one tangle,
+    /// chosen by `weights` against its neighbours, whose elements may
+    /// hold one nested tangle each (their seed group's, the same in all
+    /// of them); or `"sampler"`, the paper's loop, where every white piece
+    /// left, however small, gets a pattern of its own.
+    #[serde(default, skip_serializing_if = "Look::is_sampler")]
+    pub look: Look,
+    /// With `look = "tangles"`: how likely each procedure is to fill a
+    /// section, by id (`{ "16" = 3, "17" = 0 }`; ≥ 0, default 1 each).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub weights: BTreeMap<String, f64>,
+    /// With `look = "tangles"`: neighbouring sections differ in tangle,
+    /// dark beside light and organic beside geometric as far as the
+    /// allowed tangles let them (default true).
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub alternate: bool,
+    /// How deep tangles nest: the elements of a section's tangle hold
+    /// tangles of depth 1, theirs of depth 2, … (0–20; default: as deep as
+    /// `smallest` lets them).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub depth: Option<u32>,
+    /// The tile's border: the region's outline inked once, before
+    /// anything else, with rounded corners if asked and bent by `hand`;
+    /// everything else lies inside it (default: none, the region's edge is
+    /// not drawn).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub border: Option<BorderSpec>,
+    /// The string: curves that split the region into sections before the
+    /// loop starts, as a tangler's pencil string does; no tangle crosses
+    /// it. Inked with the layer's pen, or left out (to be drawn lightly by
+    /// a layer of its own, in its own pen).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub string: Option<StringSpec>,
+    /// The shortest piece of an element's line that may end on the edge
+    /// of the region it is drawn in (a section's edge, the border, a
+    /// string): shorter pieces left where a clipped element meets the edge
+    /// are dropped, so no stubs or corner debris line the edges (mm, 0–20;
+    /// default four pen widths with `look = "tangles"`, 0 with the
+    /// sampler: every piece kept, as the paper does).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fragment: Option<f64>,
     /// Lines (polylines, mm, ≥ 2 points each) drawn first: they split the
     /// region as a pen line does.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -115,6 +159,69 @@ pub struct ZentangleSpec {
     #[serde(default = "default_hatch")]
     pub hatch: f64,
 }
+
+/// How sections are filled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Look {
+    /// One tangle a section, chosen against its neighbours.
+    Tangles,
+    /// The paper's loop: a pattern in every white piece.
+    #[default]
+    Sampler,
+}
+
+impl Look {
+    fn is_sampler(&self) -> bool {
+        *self == Look::Sampler
+    }
+}
+
+/// The largest weight of a procedure.
+const MAX_WEIGHT: f64 = 1000.0;
+
+/// The deepest `depth`.
+const MAX_DEPTH: u32 = 20;
+
+/// The tile's border (`[…border]`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BorderSpec {
+    /// Corners rounded to this radius, mm (0–50, default 0: as the
+    /// region has them); the region shrinks to the rounded outline.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub corner: f64,
+}
+
+/// The string (`[…string]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StringSpec {
+    /// The curves, each through these points (mm, ≥ 2 points each).
+    pub lines: Vec<Points>,
+    /// Smooth curves (natural splines) through the points, as a pencil
+    /// string is drawn (default), or straight lines between them.
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub smooth: bool,
+    /// Inked with the layer's pen (default) or left out: the sections
+    /// still end a pen's width short of it on each side.
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub ink: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn is_true(v: &bool) -> bool {
+    *v
+}
+
+/// The largest corner radius of a border, mm.
+const MAX_CORNER: f64 = 50.0;
+
+/// The longest `fragment`, mm.
+const MAX_FRAGMENT: f64 = 20.0;
 
 /// A target darkness (0 white – 1 black) over the region, from a picture,
 /// a formula or both multiplied. A region is filled in order of its
@@ -303,6 +410,13 @@ impl Default for ZentangleSpec {
             follow: 0.0,
             branching: default_branching(),
             tone: None,
+            look: Look::default(),
+            weights: BTreeMap::new(),
+            alternate: true,
+            depth: None,
+            border: None,
+            string: None,
+            fragment: None,
             lines: Vec::new(),
             manual: Vec::new(),
             black: Black::default(),
@@ -357,6 +471,39 @@ impl Family for ZentangleSpec {
         range(&format!("{f}.branching"), self.branching, 0, MAX_BRANCHING)?;
         if let Some(tone) = &self.tone {
             tone.check(&format!("{f}.tone"))?;
+        }
+        for (id, &w) in &self.weights {
+            let field = format!("{f}.weights.{id}");
+            match id.parse::<u32>() {
+                Ok(p) if p < PROCEDURES => {}
+                _ => {
+                    return Err(Error::invalid(
+                        field,
+                        format!("names no procedure: keys are ids 0–{}", PROCEDURES - 1),
+                    ))
+                }
+            }
+            range(&field, w, 0.0, MAX_WEIGHT)?;
+        }
+        if let Some(depth) = self.depth {
+            range(&format!("{f}.depth"), depth, 0, MAX_DEPTH)?;
+        }
+        if let Some(border) = &self.border {
+            range(&format!("{f}.border.corner"), border.corner, 0.0, MAX_CORNER)?;
+        }
+        if let Some(string) = &self.string {
+            if string.lines.is_empty() {
+                return Err(Error::invalid(
+                    format!("{f}.string.lines"),
+                    "needs one or more curves, or leave the string out",
+                ));
+            }
+            for (i, line) in string.lines.iter().enumerate() {
+                points(&format!("{f}.string.lines[{i}]"), line, 2)?;
+            }
+        }
+        if let Some(fragment) = self.fragment {
+            range(&format!("{f}.fragment"), fragment, 0.0, MAX_FRAGMENT)?;
         }
         for (i, line) in self.lines.iter().enumerate() {
             points(&format!("{f}.lines[{i}]"), line, 2)?;

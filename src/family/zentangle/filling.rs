@@ -19,7 +19,8 @@ use kurbo::{BezPath, Point, Shape as _};
 
 use super::compose::compose;
 use super::element::{Mark, Paint};
-use super::procedure::{draw, Allowed, Drawn, Target, G1};
+use super::choice::{choose, Choice};
+use super::procedure::{draw, seed_group, Allowed, Drawn, Target, G1};
 use super::tangle::Tangle;
 use crate::error::{Error, Result};
 use crate::family::zentangle::ffd::Lattice;
@@ -49,6 +50,9 @@ struct Area {
     /// How much more (or less) black its procedure paints than the
     /// paper's (1 without tone control).
     black: f64,
+    /// How deep it lies in tangles: 0 for a section, 1 inside an element
+    /// of a section's tangle, …
+    depth: u32,
 }
 
 /// What one step drew.
@@ -77,6 +81,9 @@ pub(super) struct Settings<'a> {
     pub(super) retrace: f64,
     /// The pen's width, mm.
     pub(super) pen: f64,
+    /// Pieces of an element's line shorter than this (mm) are dropped
+    /// where they end on the edge of the region drawn in.
+    pub(super) fragment: f64,
     /// How far apart black parts are hatched, mm (`None`: filled, no
     /// lines).
     pub(super) hatch: Option<f64>,
@@ -87,6 +94,11 @@ pub(super) struct Settings<'a> {
     /// The target darkness (0–1) at a point, with how strongly it steers
     /// the loop (0–1); `None`: the paper's even tone.
     pub(super) tone: Option<(&'a dyn Fn(Point) -> f64, f64)>,
+    /// One tangle a section, chosen so; `None`: the paper's sampler,
+    /// a pattern in every white piece.
+    pub(super) choice: Option<Choice<'a>>,
+    /// The deepest nesting drawn in (`u32::MAX`: no limit).
+    pub(super) depth: u32,
 }
 
 /// The loop's state.
@@ -133,20 +145,60 @@ impl<'a> Filling<'a> {
             .collect();
         let mut step = Step::default();
         for region in regions {
-            let composed = compose(region, &marks, pen, flattening(pen))?;
+            // The user's lines are drawn whatever is left of them.
+            let composed = compose(region, &marks, pen, flattening(pen), 0.0)?;
             for piece in composed.white {
-                filling.push(piece.region, None);
+                filling.push(piece.region, None, 0);
             }
             step.strokes.extend(composed.strokes);
             step.black.extend(composed.black);
         }
+
         // The lines are the user's: drawn whatever their ink.
         let drawn = ink_of(&step.strokes, &step.black);
         filling.ink.add(&drawn);
         Ok((filling, step))
     }
 
-    fn push(&mut self, region: Region, seed: Option<u32>) {
+    /// With one tangle a section: gives each section waiting (all are,
+    /// before the first step) the tangle the settings' choice picks for
+    /// it.
+    pub(super) fn choose_tangles(&mut self, rng: &mut RandomStream) {
+        let Some(choice) = self.settings.choice else {
+            return;
+        };
+        let waiting: Vec<usize> = (0..self.areas.len())
+            .filter(|&i| self.areas[i].is_some())
+            .collect();
+        let sections: Vec<Region> = waiting
+            .iter()
+            .filter_map(|&i| self.areas[i].as_ref().map(|a| a.region.clone()))
+            .collect();
+        let poles: Vec<Point> = waiting
+            .iter()
+            .filter_map(|&i| self.areas[i].as_ref().map(|a| a.pole))
+            .collect();
+        let tone = self.settings.tone.map(|(t, _)| t);
+        let tangles = choose(
+            &sections,
+            &poles,
+            &self.allowed,
+            &choice,
+            tone,
+            self.settings.pen,
+            rng,
+        );
+        for (&i, p) in waiting.iter().zip(tangles) {
+            if let Some(a) = &mut self.areas[i] {
+                a.seed = Some(p);
+            }
+        }
+    }
+
+    fn push(&mut self, region: Region, seed: Option<u32>, depth: u32) {
+        if depth > self.settings.depth {
+            return;
+        }
         let precision = precision(&region, self.settings.pen);
         let Some((pole, radius)) = pole_of_inaccessibility(&region, precision) else {
             return;
@@ -174,6 +226,7 @@ impl<'a> Filling<'a> {
             pole,
             radius,
             black,
+            depth,
         }));
         self.queue.push(((radius * weight).to_bits(), Reverse(id)));
     }
@@ -233,6 +286,13 @@ impl<'a> Filling<'a> {
         // What is drawn of them is counted once composed.
         self.ink.remove(&pending);
         kept
+    }
+
+    /// Whether `piece` is open as wide as half a region of inscribed
+    /// radius `radius`.
+    fn is_open(&self, piece: &Region, radius: f64) -> bool {
+        pole_of_inaccessibility(piece, precision(piece, self.settings.pen))
+            .is_some_and(|(_, r)| r >= 0.5 * radius)
     }
 
     /// The white regions left that are wide enough to draw in.
@@ -319,7 +379,13 @@ impl<'a> Filling<'a> {
             drawn = self.retraced(drawn)?;
         }
         let drawn = self.within_ink(drawn);
-        let composed = compose(&area.region, &drawn.marks, pen, flattening(pen))?;
+        let composed = compose(
+            &area.region,
+            &drawn.marks,
+            pen,
+            flattening(pen),
+            self.settings.fragment,
+        )?;
         let ink = ink_of(&composed.strokes, &composed.black);
         self.ink.add(&ink);
         // A named tangle fills its section: what it leaves white stays so.
@@ -328,12 +394,32 @@ impl<'a> Filling<'a> {
         } else {
             composed.white
         };
+        // One tangle a section: all its elements hold the same nested
+        // tangle, of the seed group the procedure names.
+        let nested = match (&self.settings.choice, seed_group(procedure)) {
+            (Some(_), Some(group)) => Some(self.allowed.pick(group, rng)),
+            _ => None,
+        };
         for piece in white {
+            let own = piece.inside.and_then(|i| drawn.seeds[i]);
+            if self.settings.choice.is_some() {
+                // The tangle's own white, between and inside its elements,
+                // stays white; only what they nest is drawn in, and what
+                // it left open as wide as half the section, where the
+                // same tangle goes on (a band along the edge goes round
+                // again inside).
+                if own.is_some() {
+                    self.push(piece.region, nested, area.depth + 1);
+                } else if piece.inside.is_none() && self.is_open(&piece.region, area.radius) {
+                    self.push(piece.region, Some(procedure), area.depth);
+                }
+                continue;
+            }
             // Inside a white mark: the seed the mark was given. Elsewhere
             // the piece keeps its region's seed, as its pixels would in the
             // paper's frame buffer (the blank page's stays "any").
-            let seed = piece.inside.and_then(|i| drawn.seeds[i]).or(area.seed);
-            self.push(piece.region, seed);
+            let depth = area.depth + u32::from(own.is_some());
+            self.push(piece.region, own.or(area.seed), depth);
         }
         Ok(Step {
             procedure: Some(procedure),

@@ -10,19 +10,23 @@
 //!   seed groups;
 //! - `tangle`: twelve named Zentangle tangles (Printemps, Hollibaugh, …),
 //!   procedures from id 20;
+//! - `choice`: which tangle fills each section;
 //! - `compose`: what a procedure's marks do to a white region — the
 //!   visible lines, the white pieces left and the black area;
+//! - `tile`: the border and the string, and the sections they leave;
 //! - `filling`: the loop;
 //! - `ink`: the ink per square millimetre the loop may not pass.
 //!
 //! Each step is a group `<layer>.<table>.step-K-pP` (step K drew
 //! procedure P; `step-K-printemps` for a named tangle) of its lines (`line-I`) and black parts (`black-I`,
 //! hatched or filled as `black` says); `step-0-lines` holds the
-//! description's own `lines`.
+//! description's own `lines` and an inked string; `border` the border's
+//! lines, one closed path per contour.
 
 pub(crate) mod description;
 #[cfg(feature = "studio")]
 mod gesture;
+mod choice;
 mod compose;
 mod element;
 pub(crate) mod ffd;
@@ -32,6 +36,7 @@ mod pattern;
 mod placement;
 mod procedure;
 mod tangle;
+mod tile;
 
 use kurbo::{BezPath, Point};
 
@@ -42,9 +47,11 @@ use crate::motif::region::regions;
 use crate::motif::Context;
 use crate::rng::RandomStream;
 use crate::scene::{Color, Group, Style};
-use crate::spec::{Black, ZentangleSpec, ELEMENTS, PROCEDURES};
+use crate::spec::{Black, Look, ZentangleSpec, ELEMENTS, PROCEDURES};
+use choice::Choice;
 use element::Shape;
 use filling::{Filling, Settings, Step};
+use tile::polyline;
 use procedure::Allowed;
 use tangle::Tangle;
 
@@ -67,8 +74,28 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         ),
     };
     debug_assert!(ELEMENTS.iter().all(|n| Shape::from_name(n).is_some()));
-    let lines: Vec<BezPath> = spec.lines.iter().map(|l| polyline(l)).collect();
     let pen = cx.pen_width();
+    let mut hand = cx.stream(&format!("{group_id}/hand"));
+    let tile = tile::tile(
+        &regions,
+        spec.border.as_ref(),
+        spec.string.as_ref(),
+        spec.hand,
+        pen,
+        &mut hand,
+    )
+    .map_err(|e| match e {
+        Error::Invalid { field, message, .. } if field == "border.corner" => {
+            Error::invalid(cx.field("border.corner"), message)
+        }
+        other => other,
+    })?;
+    let lines: Vec<BezPath> = spec
+        .lines
+        .iter()
+        .map(|l| polyline(&l.iter().map(|&[x, y]| Point::new(x, y)).collect::<Vec<_>>()))
+        .chain(tile.string)
+        .collect();
     let formula = match spec.tone.as_ref().and_then(|t| t.formula.as_deref()) {
         Some(text) => Some(Formula::parse(text).map_err(|e| match e {
             Error::Invalid { message, .. } => Error::invalid(cx.field("tone.formula"), message),
@@ -93,6 +120,7 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         darkness = darkness.with_formula(f);
     }
     let tone = |p: Point| darkness.at(p);
+    let weight = |p: u32| spec.weights.get(&p.to_string()).copied().unwrap_or(1.0);
     let settings = Settings {
         scale: spec.scale,
         smallest: spec.smallest,
@@ -100,6 +128,15 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         hand: spec.hand,
         retrace: spec.retrace,
         pen,
+        fragment: spec.fragment.unwrap_or(match spec.look {
+            Look::Tangles => FRAGMENT_PENS * pen,
+            Look::Sampler => 0.0,
+        }),
+        choice: (spec.look == Look::Tangles).then_some(Choice {
+            weight: &weight,
+            contrast: spec.alternate,
+        }),
+        depth: spec.depth.unwrap_or(u32::MAX),
         hatch: (spec.black == Black::Hatch).then_some(spec.hatch),
         follow: spec.follow,
         branching: spec.branching,
@@ -108,8 +145,7 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
             .as_ref()
             .map(|t| (&tone as &dyn Fn(Point) -> f64, t.contrast)),
     };
-    let hand = cx.stream(&format!("{group_id}/hand"));
-    let (mut filling, first) = Filling::new(&regions, lines, allowed, settings, hand)?;
+    let (mut filling, first) = Filling::new(&tile.sections, lines, allowed, settings, hand)?;
     if filling.open() == 0 {
         return Err(Error::invalid(
             cx.field("region"),
@@ -120,7 +156,17 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
             ),
         ));
     }
+    filling.choose_tangles(&mut rng);
     let mut group = Group::new(group_id);
+    if !tile.border.is_empty() {
+        let id = format!("{group_id}.border");
+        cx.take_paths(tile.border.len(), || format!("zentangle {id}"))?;
+        let mut border = Group::new(&id);
+        for (i, line) in tile.border.into_iter().enumerate() {
+            border.push_path(format!("{id}.line-{i}"), line, Style::default());
+        }
+        group.push_group(border);
+    }
     emit(spec, &mut group, group_id, 0, first, cx)?;
     // The manual steps chosen for the blank tile, then the loop, then
     // the manual steps that touch up what the loop left white.
@@ -235,18 +281,10 @@ fn emit(
     Ok(())
 }
 
-/// A polyline through `points`.
-fn polyline(points: &[[f64; 2]]) -> BezPath {
-    let mut path = BezPath::new();
-    for (i, &[x, y]) in points.iter().enumerate() {
-        if i == 0 {
-            path.move_to((x, y));
-        } else {
-            path.line_to((x, y));
-        }
-    }
-    path
-}
+/// The shortest piece of a clipped element's line left on an edge, in
+/// pen widths (the description's `fragment` when it gives none): shorter,
+/// a stub reads as a dot or a blot.
+const FRAGMENT_PENS: f64 = 4.0;
 
 #[cfg(test)]
 mod tests;

@@ -70,10 +70,13 @@ fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
         hand: 0.4,
         retrace: 0.2,
         pen,
+        fragment: 1.2,
         hatch: Some(0.5),
         follow: 0.0,
         branching: 2,
         tone: None,
+        choice: None,
+        depth: u32::MAX,
     };
     let hand = Seed(11).derive("hand").stream();
     let (mut filling, _) = Filling::new(&[page], Vec::new(), all(), settings, hand).unwrap();
@@ -367,4 +370,92 @@ fn retracing_draws_each_line_twice_near_itself() {
     let ratio = length(&twice) / length(&once);
     assert!(ratio > 1.6 && ratio < 2.2, "{ratio}");
     assert!(error("retrace = 2\n").contains("layers[0].zentangle[0].retrace"));
+}
+
+/// A bordered 89 mm tile with a string, as `zentangle-string` draws it.
+const TILE: &str = "steps = 60\nhand = 0.3\nlook = \"tangles\"\n\
+    [layers.zentangle.border]\ncorner = 5\n\
+    [layers.zentangle.string]\nlines = [[[0, 30], [40, 45], [60, 89]], [[40, 45], [89, 20]]]\n\
+    [layers.zentangle.region]\npolygon = [[0, 0], [89, 0], [89, 89], [0, 89]]\n";
+
+/// The paths of the first layer whose id has `part`, on the page.
+fn paths_with(s: &Scene, part: &str) -> Vec<BezPath> {
+    let mut out = Vec::new();
+    s.layers[0].content.visit_paths(kurbo::Affine::IDENTITY, &mut |p, t| {
+        if p.id.contains(part) {
+            out.push(t * p.path.clone());
+        }
+    });
+    out
+}
+
+#[test]
+fn the_border_is_one_closed_line_and_nothing_lies_outside_it() {
+    let s = scene(TILE);
+    let border = paths_with(&s, ".border.");
+    assert_eq!(border.len(), 1);
+    let line = &border[0];
+    let moves = line.elements().iter().filter(|e| matches!(e, PathEl::MoveTo(_))).count();
+    assert_eq!(moves, 1);
+    assert!(matches!(line.elements().last(), Some(PathEl::ClosePath)));
+    // Rounded corners: the corner of the square is well outside it, and
+    // the hand bent it (no side is straight).
+    let inside = Region::new(line.clone(), crate::geom::region::FillRule::NonZero).unwrap();
+    let b = inside.bounds();
+    assert!(!inside.contains(Point::new(b.x0 + 0.8, b.y0 + 0.8)));
+    let straight = Region::from_rect(Rect::new(0.0, 0.0, 89.0, 89.0)).unwrap();
+    assert!(inside.xor(&straight).area() > 20.0, "{}", inside.xor(&straight).area());
+    // Every other line lies inside it, short of its ink.
+    let tangles = paths_with(&s, ".step-");
+    assert!(tangles.len() > 50, "{}", tangles.len());
+    let within = offset(&inside, -0.1, 0.01).unwrap();
+    for t in &tangles {
+        for p in points(t) {
+            assert!(within.contains(p), "{p:?} outside the border");
+        }
+    }
+    // Without `border` the edge is not drawn.
+    let plain = scene(&TILE.replace("[layers.zentangle.border]\ncorner = 5\n", ""));
+    assert!(paths_with(&plain, ".border.").is_empty());
+}
+
+#[test]
+fn a_string_left_out_still_splits_the_sections() {
+    let inked = scene(TILE);
+    let hidden = scene(&TILE.replace("[layers.zentangle.string]\n", "[layers.zentangle.string]\nink = false\n"));
+    assert!(paths_with(&inked, ".step-0-lines.").len() >= 2);
+    assert!(paths_with(&hidden, ".step-0-lines.").is_empty());
+    // No tangle line crosses the string's ink: every point of every step
+    // stays a pen's half width away from the string's curves.
+    let string: Vec<BezPath> = paths_with(&inked, ".step-0-lines.");
+    for t in paths_with(&hidden, ".step-") {
+        for p in points(&t) {
+            let d = string
+                .iter()
+                .map(|c| super::element::tests::distance_to(c, p))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d > 0.12, "{p:?} is {d} mm from the string");
+        }
+    }
+}
+
+#[test]
+fn one_tangle_a_section_or_a_sampler() {
+    // Sections: one depth-0 step each, then only nested ones.
+    let count = |s: &Scene| {
+        let mut set = std::collections::BTreeSet::new();
+        for p in procedures(s) {
+            set.insert(p);
+        }
+        set.len()
+    };
+    let tangles = scene(&format!("depth = 0\n{TILE}"));
+    // Three sections, each one tangle and nothing nested.
+    assert!(count(&tangles) <= 3, "{:?}", procedures(&tangles));
+    let sampler = scene(&TILE.replace("look = \"tangles\"", "look = \"sampler\""));
+    assert!(count(&sampler) > 6, "{:?}", procedures(&sampler));
+    assert!(error("look = \"quilt\"\n").contains("look"));
+    assert!(error("weights = { \"20\" = 1 }\n").contains("layers[0].zentangle[0].weights.20: names no procedure"));
+    assert!(error("depth = 30\n").contains("layers[0].zentangle[0].depth: must be between 0 and 20"));
+    assert!(error(&format!("{TILE}").replace("corner = 5", "corner = 45")).contains("layers[0].zentangle[0].border.corner"));
 }

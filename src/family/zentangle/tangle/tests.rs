@@ -60,7 +60,7 @@ fn drawn(tangle: Tangle, region: &Region, seed: u64) -> (Vec<Mark>, Composed) {
     };
     let mut rng = Seed(seed).derive(tangle.name()).stream();
     let marks = draw(tangle, &t, &mut rng).unwrap();
-    let composed = compose(region, &marks, PEN, TOL).unwrap();
+    let composed = compose(region, &marks, PEN, TOL, 0.0).unwrap();
     (marks, composed)
 }
 
