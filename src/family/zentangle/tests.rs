@@ -457,5 +457,5 @@ fn one_tangle_a_section_or_a_sampler() {
     assert!(error("look = \"quilt\"\n").contains("look"));
     assert!(error("weights = { \"20\" = 1 }\n").contains("layers[0].zentangle[0].weights.20: names no procedure"));
     assert!(error("depth = 30\n").contains("layers[0].zentangle[0].depth: must be between 0 and 20"));
-    assert!(error(&format!("{TILE}").replace("corner = 5", "corner = 45")).contains("layers[0].zentangle[0].border.corner"));
+    assert!(error(&TILE.replace("corner = 5", "corner = 45")).contains("layers[0].zentangle[0].border.corner"));
 }
