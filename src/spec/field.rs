@@ -219,11 +219,11 @@ mod tests {
             [("plot.occlude.silhouettes".to_string(), true)]
         );
         let found = choices(&v);
-        // Names and ids are free text; the distribution takes three words.
+        // Names and ids are free text; the distribution takes four words.
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].field, "layers[0].voronoi[0].sites.distribution");
         assert_eq!(found[0].value, "grid");
-        assert_eq!(found[0].options, ["uniform", "grid", "poisson"]);
+        assert_eq!(found[0].options, ["uniform", "grid", "poisson", "rose"]);
     }
 
     #[test]

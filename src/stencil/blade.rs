@@ -26,6 +26,9 @@ pub const CORNER_REACH: f64 = 0.25;
 /// # Errors
 /// When an offset fails (coordinates out of range).
 pub fn narrow_places(region: &Region, width: f64, tolerance: f64) -> Result<Vec<Point>> {
+    // A feature exactly `width` wide passes: the opening's disc is smaller
+    // by the offsets' own error, which would otherwise close it.
+    let width = width - 2.0 * tolerance;
     if width <= 0.0 || region.is_empty() {
         return Ok(Vec::new());
     }

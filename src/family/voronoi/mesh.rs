@@ -68,14 +68,10 @@ pub(crate) struct Mesh {
 }
 
 impl Mesh {
-    /// The edges chained into strokes: the inner ones, and the outline's
-    /// when `outline`.
-    pub(crate) fn strokes(&self, outline: bool) -> Vec<BezPath> {
-        let mut edges = self.inner.clone();
-        if outline {
-            edges.extend(&self.outline);
-        }
-        chains(&self.points, &edges)
+    /// The inner edges chained into strokes. The outline a pen draws is
+    /// the region's own, exact, not these edges a hair inside it.
+    pub(crate) fn strokes(&self) -> Vec<BezPath> {
+        chains(&self.points, &self.inner)
     }
 
     /// A triangle's corners.

@@ -40,6 +40,7 @@ use crate::error::{Error, Result};
 use crate::geom::density::{Density, Formula, GreyImage};
 use crate::geom::offset::offset;
 use crate::geom::region::Region;
+use crate::geom::subpath::subpaths;
 use crate::geom::voronoi::{
     cell_network, delaunay_edges, distinct, relax, CellOptions,
     Diagram, Domain, Lbg, Relaxation, Relaxed,
@@ -100,11 +101,15 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
                 let diagram = diagram.as_ref().expect("made for cells");
                 numbered(&id, "stroke", cell_network(diagram, spec.outline))
             }
-            Draw::Delaunay => numbered(
-                &id,
-                "stroke",
-                mesh::triangulate(&sites, &region)?.strokes(spec.outline),
-            ),
+            Draw::Delaunay => {
+                // The mesh's own outline lies a hair inside the region (see
+                // `mesh`); the outline a pen draws is the region's, exact.
+                let mut strokes = mesh::triangulate(&sites, &region)?.strokes();
+                if spec.outline {
+                    strokes.extend(subpaths(region.path()).map(|s| s.to_path()));
+                }
+                numbered(&id, "stroke", strokes)
+            }
             Draw::Inset => inset(spec, diagram.as_ref().expect("made for inset"), &id)?,
             Draw::Sites => {
                 let width = cx.pen_width();
