@@ -26,9 +26,6 @@ const ASPECT: f64 = 0.75;
 /// Cells wider than this many spacings double the count.
 const WIDEST: f64 = 2.0;
 
-/// Fraction of a cell by which alternate rings turn past half a cell.
-const TIE_BREAK: f64 = 1e-3;
-
 /// Most rings a window has.
 const MAX_RINGS: usize = 200;
 
@@ -62,12 +59,7 @@ pub(crate) fn plan(bounds: Rect, petals: u32, spacing: f64) -> Rose {
             break;
         }
         let step = TAU / count as f64;
-        // Half a cell, and a hair more: with exactly half, every two sites
-        // of a ring and the two between them on the next lie on one circle,
-        // and the Delaunay triangulation may cut each such four either
-        // way, which the window would show as cells that differ from
-        // petal to petal.
-        let turn = if ring % 2 == 1 { 0.5 + TIE_BREAK } else { 0.0 };
+        let turn = if ring % 2 == 1 { 0.5 } else { 0.0 };
         rose.sites.extend((0..count).map(|j| {
             let angle = (j as f64 + turn) * step;
             centre + radius * kurbo::Vec2::from_angle(angle)
