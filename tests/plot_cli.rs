@@ -1030,7 +1030,9 @@ fn an_output_extension_that_names_no_format_is_refused() {
         let stderr = fails(&dir, &["plot", "graph.svg", "-o", out]);
         assert!(stderr.contains(expected), "{stderr}");
         assert!(
-            stderr.contains(".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt or .hgl, or give --format"),
+            stderr.contains(
+                ".svg, .gcode, .nc, .ngc, .g, .hpgl, .plt, .hgl or .dxf, or give --format"
+            ),
             "{stderr}"
         );
     }

@@ -251,7 +251,7 @@ fn a_click_gives_the_white_region_under_it_a_procedure() {
     // Not a fill, not a procedure.
     for click in [
         json!({"target": "layers[0].trees[0]", "at": [4, 4], "procedure": 2}),
-        json!({"target": "layers[0].zentangle[0]", "at": [4, 4], "procedure": 20}),
+        json!({"target": "layers[0].zentangle[0]", "at": [4, 4], "procedure": 32}),
     ] {
         assert_eq!(post(addr, "/api/fill", &click).status, 422, "{click}");
     }

@@ -1,6 +1,7 @@
 //! The triangles `draw = ["delaunay"]` draws: a constrained Delaunay
 //! triangulation of the sites inside the region's outline, refined until
-//! no triangle has an angle under [`MIN_ANGLE`].
+//! no triangle has an angle under [`MIN_ANGLE`] (or is smaller than
+//! [`SMALLEST`]).
 //!
 //! Two faults of the plain triangulation go. *Fans of slivers*: a
 //! rectangle's outline has four vertices, so every site near the border
@@ -31,6 +32,12 @@ use crate::geom::{PointIndex, TOLERANCE};
 /// The smallest angle refinement lets a triangle keep, degrees, save
 /// where the outline itself makes a sharper corner.
 pub(crate) const MIN_ANGLE: f64 = 22.0;
+
+/// Triangles of less area (mm²) are not refined further: along a tight
+/// curve refinement would go on splitting, and a mesh of triangles a
+/// millimetre across is about as much line as a fine pen lays down solid
+/// (3.5 mm of line per mm² for equilateral ones).
+const SMALLEST: f64 = 0.5;
 
 /// How far inside the region the triangulated outline lies, mm.
 const INSIDE: f64 = 0.06;
@@ -114,6 +121,7 @@ pub(crate) fn triangulate(sites: &[Point], region: &Region) -> Result<Mesh> {
         let result = cdt.refine(
             RefinementParameters::new()
                 .with_angle_limit(AngleLimit::from_deg(MIN_ANGLE))
+                .with_min_required_area(SMALLEST)
                 .exclude_outer_faces(true)
                 .with_max_additional_vertices(budget),
         );
