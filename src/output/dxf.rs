@@ -6,7 +6,7 @@
 //! the sheet's bottom-left corner at the origin. One layer per pen, named
 //! `PEN-N` (R12 names: capitals, digits, `-` and `_`, at most 31
 //! characters), listed in the `LAYER` table. Every stroke of the stroke
-//! model ([`super::strokes`]) is one `POLYLINE` (closed flag for a closed
+//! model (`output::strokes`) is one `POLYLINE` (closed flag for a closed
 //! outline, its first point not repeated) with its `VERTEX`es and a
 //! `SEQEND`; a dot is a `POINT`. Entities come in the order the pens draw
 //! them, so a cutting program that keeps file order keeps the plot order
