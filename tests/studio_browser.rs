@@ -392,16 +392,17 @@ fn a_stroke_drawn_with_a_pen_grows_the_sketch_while_the_pen_is_down() {
     browser.click("input[name=tool][value=pen]");
     let steps =
         "const g = document.getElementById('studio-sketch'); return g ? +g.dataset.steps : -1;";
-    // The pen goes down low on the page and moves up it; the action
-    // ends with the pen still down. (The preview is found again each
-    // time: a render replaces it.)
+    // The pen goes down low on the page, inside its margins (a stroke that
+    // leaves the drawable area stops growing there), and moves up it; the
+    // action ends with the pen still down. (The preview is found again
+    // each time: a render replaces it.)
     let moves = |from: i64, count: usize| -> Vec<Value> {
         let svg = browser.element("#preview svg");
         let mut list = Vec::new();
         for i in 0..count {
             let k = from + i as i64;
             let x = (30.0 * (k as f64 / 6.0).sin()) as i64;
-            list.push(json!({"type": "pointerMove", "origin": {ELEMENT: svg.clone()}, "x": x, "y": 300 - 12 * k, "duration": 30}));
+            list.push(json!({"type": "pointerMove", "origin": {ELEMENT: svg.clone()}, "x": x, "y": 200 - 10 * k, "duration": 30}));
         }
         list
     };
