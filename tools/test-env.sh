@@ -74,7 +74,7 @@ moyo_test_env() {
     printf 'tools/test-env.sh: not installed:%s\n' "$failed" >&2
     [ -z "${CI:-}" ]
   else
-    echo "tools/test-env.sh: vpype, pygcode, trimesh, hp2xx and Chromium are ready; cargo test --locked runs every test" >&2
+    echo "tools/test-env.sh: vpype, pygcode, ezdxf, trimesh, hp2xx and Chromium are ready; cargo test --locked runs every test" >&2
   fi
 }
 moyo_test_env

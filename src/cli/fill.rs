@@ -19,7 +19,7 @@ pub(crate) enum PatternArg {
     Delaunay,
     /// A dot at each site (--dot), relaxed 10 times by default.
     Stipple,
-    /// One pen-down line through every site, relaxed 10 times by default.
+    /// One pen-down line through the sites of each separate shape, relaxed 10 times by default.
     Tour,
     /// Each cell shrunk and rounded, a closed shape each: stained glass.
     Glass,

@@ -96,7 +96,8 @@ pub enum Draw {
     Inset,
     /// A dot of radius `dot` at each site: stippling.
     Sites,
-    /// One pen-down line through every site (nearest neighbour, then 2-opt).
+    /// One pen-down line through the sites of each connected part of the
+    /// region (nearest neighbour, then 2-opt).
     Tour,
     /// Mud cracks: the region split again and again, largest piece first,
     /// by curved cracks that end on older ones (T-junctions), narrower

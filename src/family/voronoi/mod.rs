@@ -34,7 +34,7 @@ mod gesture;
 
 use std::borrow::Cow;
 
-use kurbo::{BezPath, Point, Shape};
+use kurbo::{BezPath, Point, Rect, Shape};
 
 use crate::error::{Error, Result};
 use crate::geom::density::{Density, Formula, GreyImage};
@@ -125,7 +125,7 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
                     .map(|(i, p)| (format!("{id}.site-{i}"), dot(*p, radius(*p), width)))
                     .collect()
             }
-            Draw::Tour => vec![(format!("{id}.line"), tour_path(&sites, &edges))],
+            Draw::Tour => vec![(format!("{id}.line"), tours(&sites, &edges, &region))],
             Draw::Cracks => numbered(&id, "plate", plates(spec, group_id, &region, cx)?),
         };
         cx.take_paths(paths.len(), || format!("voronoi {id}"))?;
@@ -587,6 +587,47 @@ fn inset(spec: &VoronoiSpec, diagram: &Diagram, id: &str) -> Result<Vec<(String,
         }
     }
     Ok(out)
+}
+
+/// One pen-down line through the sites of each connected part of `region`,
+/// the pen lifted between parts: a line across blank paper from one shape
+/// to another is no part of the pattern.
+fn tours(sites: &[Point], edges: &[[usize; 2]], region: &Region) -> BezPath {
+    let parts = region.components();
+    if parts.len() <= 1 {
+        return tour_path(sites, edges);
+    }
+    let bounds: Vec<Rect> = parts.iter().map(Region::bounds).collect();
+    // A site on no part's inside (a hair outside, by rounding) goes with
+    // the first part whose bounds hold it.
+    let part_of: Vec<usize> = sites
+        .iter()
+        .map(|&p| {
+            let holding: Vec<usize> = (0..parts.len()).filter(|&k| bounds[k].contains(p)).collect();
+            holding
+                .iter()
+                .copied()
+                .find(|&k| parts[k].contains(p))
+                .or(holding.first().copied())
+                .unwrap_or(0)
+        })
+        .collect();
+    let mut path = BezPath::new();
+    for part in 0..parts.len() {
+        let members: Vec<usize> = (0..sites.len()).filter(|&i| part_of[i] == part).collect();
+        let mut local = vec![usize::MAX; sites.len()];
+        for (k, &i) in members.iter().enumerate() {
+            local[i] = k;
+        }
+        let points: Vec<Point> = members.iter().map(|&i| sites[i]).collect();
+        let inner: Vec<[usize; 2]> = edges
+            .iter()
+            .filter(|[i, j]| part_of[*i] == part && part_of[*j] == part)
+            .map(|&[i, j]| [local[i], local[j]])
+            .collect();
+        path.extend(tour_path(&points, &inner).elements().iter().copied());
+    }
+    path
 }
 
 /// One line through every site, 2-opt tried among Delaunay neighbours.

@@ -44,7 +44,8 @@ pub enum FillPattern {
     /// tap of the pen, or a spiral filling the dot).
     /// Relaxed 10 times unless [`FillJob::relax`] says otherwise.
     Stipple,
-    /// One pen-down line through every site. Relaxed 10 times unless
+    /// One pen-down line through the sites of each separate shape (the pen
+    /// lifts between shapes). Relaxed 10 times unless
     /// [`FillJob::relax`] says otherwise.
     Tour,
     /// Each cell as its own closed shape, 0.8 mm in from its edges, corners

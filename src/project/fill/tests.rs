@@ -491,3 +491,36 @@ fn a_pattern_that_draws_nothing_is_an_error() {
     assert_eq!(field, "pattern");
     assert!(message.contains("drew nothing"), "{message}");
 }
+
+#[test]
+fn a_tour_lifts_the_pen_between_separate_shapes() {
+    let two = r##"<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="100mm" viewBox="0 0 200 100">
+        <rect x="10" y="10" width="60" height="80" stroke="#000" fill="none"/>
+        <circle cx="140" cy="50" r="40" stroke="#000" fill="none"/>
+    </svg>"##;
+    let drawing = import_svg(two, &ImportOptions::DEFAULT).unwrap().scene;
+    let filled = fill_scene(drawing, &FillJob::new(FillPattern::Tour).with_spacing(4.0)).unwrap();
+    let (mut lines, mut across, mut starts) = (0, 0, 0);
+    fill_layer(&filled)
+        .content
+        .visit_paths(Affine::IDENTITY, &mut |p, t| {
+            for el in (t * p.path.clone()).elements() {
+                if let PathEl::MoveTo(_) = el {
+                    starts += 1;
+                }
+            }
+            for seg in (t * p.path.clone()).segments() {
+                let (a, b) = (seg.start(), seg.end());
+                lines += 1;
+                if (a.x < 75.0) != (b.x < 75.0) {
+                    across += 1;
+                }
+            }
+        });
+    assert!(lines > 200, "{lines} steps");
+    assert_eq!(
+        across, 0,
+        "a step runs across the blank paper between the shapes"
+    );
+    assert_eq!(starts, 2, "one tour a shape");
+}
