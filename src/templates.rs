@@ -16,12 +16,9 @@ pub struct Template {
     pub text: &'static str,
 }
 
-/// The template `moyo render` uses when no scene is given.
+/// The template `moyo render` and `moyo studio` use when no scene is
+/// given: the same design from either door.
 pub const DEFAULT: &str = "kimono-1";
-
-/// The template `moyo studio` opens when no scene is given: a kimono
-/// design light enough to render again on every change (about 0.1 s).
-pub const STUDIO: &str = "kimono-2";
 
 /// `Template`s for files `templates/<name>.toml`.
 macro_rules! templates {

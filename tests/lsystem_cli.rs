@@ -190,9 +190,39 @@ fn bad_rules_name_the_option_and_the_column_and_write_nothing() {
             vec!["--stroke", "stroke.svg", "-n", "3"],
             "--iterations: with --stroke, the sketch takes one step per --module mm",
         ),
+        (
+            vec!["--stroke", "stroke.svg", "--page", "A3"],
+            "'--page <PAGE>'",
+        ),
+        (
+            vec!["--stroke", "stroke.svg", "--axiom", "F"],
+            "'--axiom <AXIOM>'",
+        ),
+        (
+            vec!["--axiom", "F", "--module", "3"],
+            "--module: the step of a sketch along --stroke",
+        ),
+        // Nothing to draw is an error, not an empty file.
+        (
+            vec!["--stroke", "stroke.svg", "--module", "1000"],
+            "--stroke stroke.svg: nothing grew",
+        ),
+        (
+            vec!["--stroke", "empty.svg"],
+            "--stroke empty.svg: has no path",
+        ),
+        (
+            vec!["--axiom", "X", "--rule", "X=+X"],
+            "nothing drawn: the rules' word has no symbol that draws a line",
+        ),
     ] {
         let d = dir();
         fs::write(d.path().join("stroke.svg"), STROKE).unwrap();
+        fs::write(
+            d.path().join("empty.svg"),
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="50mm" height="50mm"/>"#,
+        )
+        .unwrap();
         moyo(&d)
             .arg("lsystem")
             .args(&args)

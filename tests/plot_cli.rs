@@ -403,31 +403,124 @@ fn bad_svg_fails_and_writes_nothing() {
         .stderr(predicate::str::contains("missing.svg"));
 }
 
+/// A bad value is refused before any work, named by the option as it was
+/// typed (not by the library's field), and nothing is written.
 #[test]
-fn bad_stage_options_are_refused() {
+fn bad_options_are_refused_by_the_name_typed() {
     let dir = with_default_design();
-    for args in [
-        &["--hatch", "0"][..],
-        &["--multipass", "0"],
-        &["--merge", "-1"],
-        &["--speed-down", "0"],
-        &["--accel-up", "0"],
-        &["--accel-down", "inf"],
-        &["--cornering", "NaN"],
-        &["--dedupe=-0.1"],
-        &["--dedupe", "NaN"],
-        &["--dedupe", "400"],
-        &["--debris=-1"],
-        &["--blots", "0.2"],
-        &["--blots", "NaN"],
+    for (output, args, named) in [
+        ("out.svg", &["--hatch", "0"][..], "--hatch"),
+        (
+            "out.svg",
+            &["--hatch", "1", "--hatch-inset", "-1"],
+            "--hatch-inset",
+        ),
+        ("out.svg", &["--multipass", "0"], "--multipass"),
+        ("out.svg", &["--merge", "-1"], "--merge"),
+        ("out.svg", &["--rotate", "400"], "--rotate"),
+        ("out.svg", &["--scale", "0"], "--scale"),
+        ("out.svg", &["--speed-down", "0"], "--speed-down"),
+        ("out.svg", &["--accel-up", "0"], "--accel-up"),
+        ("out.svg", &["--accel-down", "inf"], "--accel-down"),
+        ("out.svg", &["--cornering", "NaN"], "--cornering"),
+        ("out.svg", &["--dedupe=-0.1"], "--dedupe"),
+        ("out.svg", &["--dedupe", "NaN"], "--dedupe"),
+        ("out.svg", &["--dedupe", "400"], "--dedupe"),
+        ("out.svg", &["--debris=-1"], "--debris"),
+        ("out.svg", &["--blots", "0.2"], "--blots"),
+        ("out.svg", &["--blots", "NaN"], "--blots"),
+        ("out.gcode", &["--feed", "0"], "--feed"),
+        ("out.gcode", &["--travel-feed", "-5"], "--travel-feed"),
+        ("out.gcode", &["--pen-delay", "-1"], "--pen-delay"),
+        ("out.gcode", &["--refill", "0.01"], "--refill"),
+        ("out.gcode", &["--from-distance", "-3"], "--from-distance"),
+        ("out.hpgl", &["--units-per-mm", "0"], "--units-per-mm"),
+        ("out.hpgl", &["--device-range", "5,4"], "--device-range"),
+        (
+            "out.hpgl",
+            &["--cutter", "--knife-offset", "-1"],
+            "--knife-offset",
+        ),
     ] {
-        moyo(&dir)
-            .args(["plot", "hem.svg", "-o", "out.svg"])
+        let out = moyo(&dir)
+            .args(["plot", "hem.svg", "-o", output])
             .args(args)
             .assert()
-            .failure()
-            .stderr(predicate::str::starts_with("error: "));
-        assert!(!dir.path().join("out.svg").exists(), "{args:?}");
+            .failure();
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        let error = stderr
+            .lines()
+            .find(|l| l.starts_with("error: "))
+            .unwrap_or("");
+        assert!(
+            error.starts_with(&format!("error: {named}: ")),
+            "{args:?}: {stderr}"
+        );
+        assert!(!dir.path().join(output).exists(), "{args:?}");
+    }
+}
+
+/// An option that the chosen output would not change is refused, saying
+/// which output it belongs to; nothing is written.
+#[test]
+fn an_option_the_output_ignores_is_refused_with_why() {
+    let dir = with_default_design();
+    for (output, args, why) in [
+        (
+            "out.svg",
+            &["--feed", "1000"][..],
+            "a G-code option, but the output is SVG",
+        ),
+        (
+            "out.svg",
+            &["--cutter"],
+            "an HPGL option, but the output is SVG",
+        ),
+        (
+            "out.svg",
+            &["--mirror"],
+            "an HPGL option, but the output is SVG",
+        ),
+        (
+            "out.gcode",
+            &["--cutter"],
+            "an HPGL option, but the output is G-code",
+        ),
+        (
+            "out.hpgl",
+            &["--flip-y"],
+            "a G-code option, but the output is HPGL",
+        ),
+        (
+            "out.hpgl",
+            &["--arcs"],
+            "a G-code option, but the output is HPGL",
+        ),
+        ("out.dxf", &["--refill", "500"], "a machine option"),
+        ("out.hpgl", &["--precision", "2"], "the output is HPGL"),
+        ("out.svg", &["--dpi", "300"], "--png"),
+    ] {
+        let out = moyo(&dir)
+            .args(["plot", "hem.svg", "-o", output])
+            .args(args)
+            .assert()
+            .failure();
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        assert!(stderr.contains(why), "{args:?}: {stderr}");
+        assert!(!dir.path().join(output).exists(), "{args:?}");
+    }
+    // What does apply still works: --precision sets G-code's decimals.
+    moyo(&dir)
+        .args(["plot", "hem.svg", "-o", "out.gcode", "--precision", "1"])
+        .assert()
+        .success();
+    let gcode = std::fs::read_to_string(dir.path().join("out.gcode")).unwrap();
+    let moves = gcode.lines().filter(|l| l.starts_with("G1 X")).take(50);
+    for line in moves {
+        for word in line.split_whitespace().skip(1) {
+            let decimals = word.split_once('.').map_or(0, |(_, d)| d.len());
+            assert!(decimals <= 1, "{line}");
+        }
     }
 }
 
@@ -596,8 +689,11 @@ fn documentation_layers_survive_merge_and_sort_unchanged_in_the_preview() {
         .args(["--png", "out.png", "--preview-svg", "preview.svg"])
         .assert()
         .success()
-        // The summary counts what is plotted: 3 paths after merging.
-        .stderr(predicate::str::contains("(3 paths, 226 mm pen-down"));
+        // The summary counts what is plotted, 3 paths after merging, and
+        // what was read.
+        .stderr(predicate::str::contains(
+            "(3 paths from the input's 4, 226 mm pen-down",
+        ));
     // The plot holds only what pens draw: vpype and cutters would draw
     // the guides.
     let out = fs::read_to_string(dir.path().join("out.svg")).unwrap();

@@ -371,6 +371,44 @@ fn fields_come_with_their_ranges_and_change_in_place() {
         "{d}"
     );
     assert_eq!(d["undo"], 1);
+    // The seed's range is exact (2⁶³−1 has no float), and a bad seed is
+    // refused in the words of `moyo render --seed`, not the parser's.
+    let seed = get(addr, "/api/fields")
+        .json()
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["field"] == "seed")
+        .unwrap()
+        .clone();
+    assert_eq!(seed["hi"].as_u64(), Some(9_223_372_036_854_775_807));
+    assert_eq!(seed["range"], "0 – 9223372036854775807");
+    // (A whole-number field from the form is rounded: 1.5 as typed.)
+    for (bad, integer) in [
+        (serde_json::json!(-1), true),
+        (serde_json::json!(1.5), false),
+    ] {
+        let answer = json(
+            addr,
+            "PATCH",
+            "/api/field",
+            &serde_json::json!({"field": "seed", "value": bad, "integer": integer}),
+        );
+        assert_eq!(answer.status, 422, "{bad}");
+        let text = answer.text();
+        assert!(
+            text.contains("must be a whole number between 0 and 9223372036854775807")
+                && !text.contains("expected u64"),
+            "{bad}: {text}"
+        );
+    }
+    let answer = json(
+        addr,
+        "PATCH",
+        "/api/field",
+        &serde_json::json!({"field": "seed", "value": 3, "integer": true}),
+    );
+    assert_eq!(answer.status, 200, "{}", answer.text());
     // Out of range: 422 naming the field; the design stays.
     let answer = json(
         addr,

@@ -119,7 +119,7 @@ pub(crate) struct FillArgs {
     #[arg(long, help_heading = "Output")]
     png: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
-    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
+    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, requires = "png", help_heading = "Output")]
     dpi: f64,
 }
 

@@ -35,7 +35,12 @@ pub(crate) enum StyleArg {
 #[derive(Args)]
 pub(crate) struct LSystemArgs {
     /// The start word (ABOP's axiom), e.g. F or "A(1, 10)".
-    #[arg(long, allow_hyphen_values = true, required_unless_present = "stroke")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "stroke",
+        conflicts_with = "stroke"
+    )]
     axiom: Option<String>,
     /// A production, repeatable: 'F=F[+F]F[-F]F', 'F ->(0.5) F[+F]F',
     /// 'A(l) : l > 1 -> F(l)[+A(l*0.7)]'. With --stroke: the rule of a
@@ -51,37 +56,48 @@ pub(crate) struct LSystemArgs {
     #[arg(long, short = 'n', value_name = "N")]
     iterations: Option<u32>,
     /// A named constant for the rules, repeatable: --define r1=0.9.
-    #[arg(long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    #[arg(long = "define", value_name = "NAME=VALUE", value_parser = parse_define, conflicts_with = "stroke")]
     defines: Vec<(String, f64)>,
     /// Symbols that context matching passes over, e.g. "+-F".
-    #[arg(long, default_value = "", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        default_value = "",
+        allow_hyphen_values = true,
+        conflicts_with = "stroke"
+    )]
     ignore: String,
-    /// How limbs are drawn.
-    #[arg(long, value_enum, default_value = "stroke")]
+    /// How limbs are drawn (a sketch is always outlined).
+    #[arg(long, value_enum, default_value = "stroke", conflicts_with = "stroke")]
     style: StyleArg,
     /// Starting width of the turtle, in units of F (with --style outline).
-    #[arg(long, default_value_t = 1.0, value_name = "W")]
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        value_name = "W",
+        conflicts_with = "stroke"
+    )]
     width: f64,
     /// Smooth curves through the turtle's points instead of exact lines.
     #[arg(long)]
     smooth: bool,
     /// Where the 3D drawing is seen from.
-    #[arg(long, value_enum, default_value = "front")]
+    #[arg(long, value_enum, default_value = "front", conflicts_with = "stroke")]
     view: ViewArg,
     /// Seed of stochastic rules (0 – 9223372036854775807).
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Page: A5, A4, A3, A2, letter, legal, tabloid (ignored with --stroke,
-    /// which uses the stroke file's page).
-    #[arg(long, default_value = "A4")]
+    /// Page: A5, A4, A3, A2, letter, legal, tabloid. Not with --stroke,
+    /// which draws on the stroke file's page.
+    #[arg(long, default_value = "A4", conflicts_with = "stroke")]
     page: String,
     /// Grow the Sketching L-System along the first path of this SVG, on
     /// its page and in its coordinates (not fitted).
     #[arg(long, value_name = "SVG")]
     stroke: Option<PathBuf>,
-    /// With --stroke: stroke length per rule application, mm (0.1–1000).
-    #[arg(long, default_value_t = 8.0, value_name = "MM")]
-    module: f64,
+    /// With --stroke: stroke length per rule application, mm (0.1–1000)
+    /// [default: 8].
+    #[arg(long, value_name = "MM")]
+    module: Option<f64>,
 
     /// Output SVG file.
     #[arg(short, long, help_heading = "Output")]
@@ -90,7 +106,7 @@ pub(crate) struct LSystemArgs {
     #[arg(long, help_heading = "Output")]
     png: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
-    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
+    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, requires = "png", help_heading = "Output")]
     dpi: f64,
     /// Also write the drawing after every rewriting step (every module
     /// step with --stroke) into this folder: frame-000.svg, … (and .png
@@ -100,6 +116,9 @@ pub(crate) struct LSystemArgs {
     #[arg(long, value_name = "DIR", help_heading = "Output")]
     frames: Option<PathBuf>,
 }
+
+/// `--module` unless given: the paper's step, mm.
+const DEFAULT_MODULE: f64 = 8.0;
 
 /// `--angle` unless given: ABOP's δ for the plants of its fig. 1.24.
 const DEFAULT_ANGLE: f64 = 25.7;
@@ -178,7 +197,7 @@ impl LSystemArgs {
                     smooth: true,
                     svg: Some(name),
                     line: None,
-                    module: self.module,
+                    module: self.module(),
                     a: rule("a"),
                     c: rule("c"),
                     width: 1.5,
@@ -195,6 +214,13 @@ impl LSystemArgs {
                 }
             }
             None => {
+                if self.module.is_some() {
+                    return Err(CliError::Message(
+                        "--module: the step of a sketch along --stroke; without --stroke \
+                         the rules take --iterations steps; leave --module out"
+                            .to_string(),
+                    ));
+                }
                 t.axiom = self.axiom.clone().unwrap_or_default();
                 t.rules = self.rules.clone();
                 t.iterations = self.iterations.unwrap_or(DEFAULT_ITERATIONS);
@@ -205,12 +231,24 @@ impl LSystemArgs {
         Ok(t)
     }
 
+    /// The sketch's step along the stroke, mm.
+    fn module(&self) -> f64 {
+        self.module.unwrap_or(DEFAULT_MODULE)
+    }
+
     /// The scene: one layer on pen 1 holding the table.
     fn scene(&self) -> Result<ValidSpec, CliError> {
         let table = self.table()?;
         let page = match &self.stroke {
             Some(path) => {
                 let drawing = project::read_svg(path, &moyo::ImportOptions::DEFAULT)?;
+                if drawing.scene.path_count() == 0 {
+                    return Err(CliError::Message(format!(
+                        "--stroke {}: has no path for the sketch to grow along \
+                         (it grows along the SVG's first path; text and images are not paths)",
+                        path.display()
+                    )));
+                }
                 let page = drawing.scene.page;
                 Some(PaperSize::Custom([page.width, page.height]))
             }
@@ -363,6 +401,19 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
         .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     // Everything is computed before anything is written.
     let rendered = render(&spec, &base)?;
+    if rendered.scene.path_count() == 0 {
+        return Err(CliError::Message(match &args.stroke {
+            Some(path) => format!(
+                "--stroke {}: nothing grew: the sketch takes one step per --module \
+                 ({} mm) of stroke, and the stroke is shorter than that or leaves the page at once",
+                path.display(),
+                args.module()
+            ),
+            None => "nothing drawn: the rules' word has no symbol that draws a line \
+                     (F, G or a motif) after the rewriting steps; check --axiom and --rule"
+                .to_string(),
+        }));
+    }
     let png = match &args.png {
         Some(_) => Some(moyo::output::render_png(&rendered.preview_svg(), args.dpi)?),
         None => None,

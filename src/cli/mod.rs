@@ -119,7 +119,7 @@ struct RenderArgs {
     #[arg(long, value_name = "SVG")]
     preview_svg: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
-    #[arg(long, default_value_t = 150.0, value_parser = parse_dpi)]
+    #[arg(long, default_value_t = 150.0, value_parser = parse_dpi, requires = "png")]
     dpi: f64,
     /// Override the description's seed (0 – 9223372036854775807).
     #[arg(long)]
@@ -261,6 +261,26 @@ impl From<moyo::Error> for CliError {
     }
 }
 
+/// How the command line types the options the library names by field:
+/// (field path, option), e.g. `("gcode.feed_down_mm_min", "--feed")`.
+pub(crate) type Typed<'a> = &'a [(&'a str, &'a str)];
+
+/// `e` as the command line words it: an invalid field that an option of
+/// `typed` sets is named by that option (`--feed: must be …`), any other
+/// error is the library's own.
+pub(crate) fn as_typed(e: moyo::Error, typed: Typed<'_>) -> CliError {
+    match e {
+        moyo::Error::Invalid { field, message, .. } if typed.iter().any(|(f, _)| *f == field) => {
+            let (_, option) = typed
+                .iter()
+                .find(|(f, _)| *f == field)
+                .expect("found above");
+            CliError::Message(format!("{option}: {message}"))
+        }
+        e => e.into(),
+    }
+}
+
 pub(crate) fn stdout_error(e: std::io::Error) -> CliError {
     if e.kind() == std::io::ErrorKind::BrokenPipe {
         CliError::BrokenPipe
@@ -352,7 +372,12 @@ fn render(args: &RenderArgs) -> Result<(), CliError> {
                 s.output.precision = p;
             }
         })
-        .map_err(|e| CliError::Message(format!("command line: {e}")))?;
+        .map_err(|e| {
+            as_typed(
+                e,
+                &[("seed", "--seed"), ("output.precision", "--precision")],
+            )
+        })?;
 
     let bar = DelayedBar::new();
     let library = match &files {

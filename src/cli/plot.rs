@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 
-use super::{check_outputs, stdout_error, warn_outside_page, CliError, Named};
+use super::{as_typed, check_outputs, stdout_error, warn_outside_page, CliError, Named, Typed};
 use moyo::input::{ImportOptions, Imported, PenGrouping};
 use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
 use moyo::output::dxf::DxfOptions;
@@ -122,9 +122,10 @@ pub(crate) struct PlotArgs {
     #[arg(long, default_value_t = 0.0, help_heading = "Transform")]
     rotate: f64,
 
-    /// Decimals in SVG output (0–8).
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
-    precision: u8,
+    /// Decimals in SVG and G-code output and the --preview-svg (0–8)
+    /// [default: 3].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(0..=8), help_heading = "Output")]
+    precision: Option<u8>,
     /// Also write a PNG preview of the result, in colour (rendered from
     /// the SVG of --preview-svg).
     #[arg(long, help_heading = "Output")]
@@ -134,7 +135,7 @@ pub(crate) struct PlotArgs {
     #[arg(long, value_name = "SVG", help_heading = "Output")]
     preview_svg: Option<PathBuf>,
     /// Resolution of the PNG preview (1–2400).
-    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, help_heading = "Output")]
+    #[arg(long, default_value_t = 150.0, value_parser = super::parse_dpi, requires = "png", help_heading = "Output")]
     dpi: f64,
     /// Draw pen-up travel in red on the PNG preview (not in the output).
     #[arg(long, requires = "png", help_heading = "Output")]
@@ -236,14 +237,14 @@ pub(crate) struct SpeedArgs {
 }
 
 impl SpeedArgs {
-    /// The flag of each field of [`Speeds`], for errors.
-    const FLAGS: [(&'static str, &'static str); 6] = [
-        ("pen_down_mm_s", "speed-down"),
-        ("pen_up_mm_s", "speed-up"),
-        ("pen_lift_s", "lift-time"),
-        ("pen_down_accel_mm_s2", "accel-down"),
-        ("pen_up_accel_mm_s2", "accel-up"),
-        ("cornering_mm", "cornering"),
+    /// The option that sets each field of [`Speeds`], for errors.
+    const OPTIONS: Typed<'static> = &[
+        ("pen_down_mm_s", "--speed-down"),
+        ("pen_up_mm_s", "--speed-up"),
+        ("pen_lift_s", "--lift-time"),
+        ("pen_down_accel_mm_s2", "--accel-down"),
+        ("pen_up_accel_mm_s2", "--accel-up"),
+        ("cornering_mm", "--cornering"),
     ];
 
     fn speeds(&self) -> Result<Speeds, CliError> {
@@ -254,16 +255,7 @@ impl SpeedArgs {
             .with_pen_down_accel_mm_s2(self.accel_down)
             .with_pen_up_accel_mm_s2(self.accel_up)
             .with_cornering_mm(self.cornering);
-        s.validate().map_err(|e| match e {
-            moyo::Error::Invalid { field, message, .. } => {
-                let flag = Self::FLAGS
-                    .iter()
-                    .find(|(f, _)| *f == field)
-                    .map_or(field.as_str(), |(_, flag)| flag);
-                CliError::Message(format!("--{flag}: {message}"))
-            }
-            e => e.into(),
-        })?;
+        s.validate().map_err(|e| as_typed(e, Self::OPTIONS))?;
         Ok(s)
     }
 }
@@ -385,7 +377,7 @@ impl PlotArgs {
                 ))
             }
             (Some(OutputFormat::Svg), None) => {
-                PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision))
+                PlotFormat::Svg(SvgOptions::DEFAULT.with_precision(self.precision()))
             }
             (Some(OutputFormat::Dxf), Some(_)) => {
                 return Err(CliError::Message(
@@ -427,6 +419,74 @@ impl PlotArgs {
             .with_silhouettes(self.silhouettes)
             .with_preview(preview)
             .with_import(self.pens.import_options()))
+    }
+
+    /// The decimals asked for, else the default.
+    fn precision(&self) -> u8 {
+        self.precision.unwrap_or(SvgOptions::DEFAULT.precision)
+    }
+
+    /// Refuses the options that `format` would ignore, saying which
+    /// output they belong to: a flag that changes nothing is a surprise.
+    fn refuse_unused(&self, format: &PlotFormat) -> Result<(), CliError> {
+        let output = format.name();
+        let gcode = matches!(format, PlotFormat::Gcode(_));
+        let hpgl = matches!(format, PlotFormat::Hpgl(_));
+        let groups: [OptionGroup<'_>; 3] = [
+            (
+                "a G-code option",
+                ".gcode",
+                gcode,
+                &[
+                    ("--pen-up", self.pen_up.is_some()),
+                    ("--pen-down", self.pen_down.is_some()),
+                    ("--pen-delay", self.pen_delay.is_some()),
+                    ("--feed", self.feed.is_some()),
+                    ("--travel-feed", self.travel_feed.is_some()),
+                    ("--origin", self.origin.is_some()),
+                    ("--flip-y", self.flip_y),
+                    ("--arcs", self.arcs.is_some()),
+                ],
+            ),
+            (
+                "an HPGL option",
+                ".hpgl",
+                hpgl,
+                &[
+                    ("--cutter", self.cutter),
+                    ("--overcut", self.overcut.is_some()),
+                    ("--knife-offset", self.knife_offset.is_some()),
+                    ("--mirror", self.mirror),
+                    ("--device-range", self.device_range.is_some()),
+                    ("--units-per-mm", self.units_per_mm.is_some()),
+                ],
+            ),
+            (
+                "a machine option",
+                ".gcode or .hpgl",
+                gcode || hpgl,
+                &[
+                    ("--refill", self.refill.is_some()),
+                    ("--from-distance", self.from_distance.is_some()),
+                ],
+            ),
+        ];
+        for (what, needs, chosen, options) in groups {
+            if let Some((option, _)) = options.iter().find(|(_, given)| *given && !chosen) {
+                return Err(CliError::Message(format!(
+                    "{option}: {what}, but the output is {output}, which it would not change; \
+                     leave it out, or write {needs} (by the output's extension or --format)"
+                )));
+            }
+        }
+        let decimals = matches!(format, PlotFormat::Svg(_)) || gcode || self.preview_svg.is_some();
+        if self.precision.is_some() && !decimals {
+            return Err(CliError::Message(format!(
+                "--precision: sets the decimals of SVG and G-code, but the output is {output} \
+                 (and no --preview-svg is asked for); leave it out"
+            )));
+        }
+        Ok(())
     }
 
     /// The format asked for: --format, else the output's extension when
@@ -508,6 +568,9 @@ impl PlotArgs {
         if self.arcs.is_some() {
             o = o.with_arcs(self.arcs);
         }
+        if let Some(p) = self.precision {
+            o = o.with_precision(p);
+        }
         let runs = self.runs(o.runs);
         o.with_runs(runs)
     }
@@ -537,6 +600,41 @@ impl PlotArgs {
         o.with_runs(self.runs(o.runs))
     }
 }
+
+/// Options that only one kind of output uses: what they are, the output
+/// they need, whether it is chosen, and each option with whether it was
+/// given.
+type OptionGroup<'a> = (&'a str, &'a str, bool, &'a [(&'a str, bool)]);
+
+/// The option that sets each field `moyo plot` checks, for errors.
+const PLOT_OPTIONS: Typed<'static> = &[
+    ("plot.transform.rotate_deg", "--rotate"),
+    ("plot.transform.scale", "--scale"),
+    ("plot.transform.margin", "--fit-margin"),
+    ("plot.hatch.spacing", "--hatch"),
+    ("plot.hatch.angle_deg", "--hatch-angle"),
+    ("plot.hatch.inset", "--hatch-inset"),
+    ("plot.dedupe.tolerance", "--dedupe"),
+    ("plot.merge.tolerance", "--merge"),
+    ("plot.blots.limit", "--blots"),
+    ("plot.debris.length", "--debris"),
+    ("plot.simplify.tolerance", "--simplify"),
+    ("plot.multipass.passes", "--multipass"),
+    ("gcode.feed_down_mm_min", "--feed"),
+    ("gcode.feed_up_mm_min", "--travel-feed"),
+    ("gcode.arcs", "--arcs"),
+    ("gcode.pen_delay_s", "--pen-delay"),
+    ("gcode.runs.refill_mm", "--refill"),
+    ("gcode.runs.refill_at", "--refill-at"),
+    ("gcode.runs.from_distance_mm", "--from-distance"),
+    ("hpgl.units_per_mm", "--units-per-mm"),
+    ("hpgl.device_range", "--device-range"),
+    ("hpgl.cutter.overcut_mm", "--overcut"),
+    ("hpgl.cutter.knife_offset_mm", "--knife-offset"),
+    ("hpgl.runs.refill_mm", "--refill"),
+    ("hpgl.runs.refill_at", "--refill-at"),
+    ("hpgl.runs.from_distance_mm", "--from-distance"),
+];
 
 /// `X,Y`: two numbers.
 fn parse_point(s: &str) -> Result<[f64; 2], String> {
@@ -635,16 +733,17 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
         }),
     };
     let job = args.job(device)?;
-    job.stages
-        .validate("plot")
-        .map_err(|e| CliError::Message(format!("options: {e}")))?;
+    args.refuse_unused(&job.format)?;
+    job.validate().map_err(|e| as_typed(e, PLOT_OPTIONS))?;
     let imported = load_svg(&args.input, &job.import)?;
+    // The stages join, split and drop paths: say what came in too.
+    let read = plot::stats(&imported.scene, &speeds).paths;
     // Everything is computed before anything is written.
     let plotted = project::plot_scene(imported.scene, &job)?;
     let preview_svg = args
         .preview_svg
         .as_ref()
-        .map(|path| (path, plotted.preview_svg(args.precision)));
+        .map(|path| (path, plotted.preview_svg(args.precision())));
     // All or none: a failed output leaves every old file.
     let mut files: Vec<(&Path, &[u8])> = vec![(&args.output, plotted.bytes.as_bytes())];
     if let Some((path, svg)) = &preview_svg {
@@ -656,7 +755,7 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     write_all_atomic(&files)?;
     let s = plot::stats(&plotted.scene, &speeds);
     eprintln!(
-        "wrote {} ({} paths, {:.0} mm pen-down, {:.0} mm pen-up, about {} at constant speed, {} with acceleration)",
+        "wrote {} ({} paths from the input's {read}, {:.0} mm pen-down, {:.0} mm pen-up, about {} at constant speed, {} with acceleration)",
         args.output.display(),
         s.paths,
         s.pen_down_mm,

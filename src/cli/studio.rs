@@ -45,7 +45,7 @@ pub(crate) fn studio(args: &StudioArgs) -> Result<(), CliError> {
             }
         }
         (None, Some(name)) => templates::get(name)?.text.to_string(),
-        (None, None) => templates::get(templates::STUDIO)?.text.to_string(),
+        (None, None) => templates::get(templates::DEFAULT)?.text.to_string(),
     };
     let studio = Studio::start(StudioOptions {
         folder: PathBuf::from("."),

@@ -163,8 +163,8 @@ impl PlotOptions {
             )?;
         }
         if let Some(h) = &self.hatch {
-            h.validate()
-                .map_err(|e| prefix(e, &format!("{field}.hatch")))?;
+            // The hatch's own errors already say `hatch.…`.
+            h.validate().map_err(|e| prefix(e, field))?;
         }
         if let Some(tolerance) = self.dedupe.and_then(|d| d.tolerance) {
             finite_range(&format!("{field}.dedupe.tolerance"), tolerance, 0.0, 10.0)?;

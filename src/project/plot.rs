@@ -46,6 +46,16 @@ pub enum PlotFormat {
 }
 
 impl PlotFormat {
+    /// The format's name as people say it: `SVG`, `G-code`, `HPGL`, `DXF`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            PlotFormat::Svg(_) => "SVG",
+            PlotFormat::Gcode(_) => "G-code",
+            PlotFormat::Hpgl(_) => "HPGL",
+            PlotFormat::Dxf(_) => "DXF",
+        }
+    }
+
     /// Whether the output is for a knife: HPGL in cutter mode, or DXF
     /// (what cutting programs import). A cutter's output is always cut
     /// inside first ([`PlotOptions::inside_first`]).
@@ -151,6 +161,27 @@ impl PlotJob {
         self.preview = preview;
         self
     }
+
+    /// Checks every option of the job before any work: the stages
+    /// (fields `plot.…`), the format's options (`gcode.…`, `hpgl.…`,
+    /// `dxf.…`) and the preview's resolution.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] naming the first field out of range;
+    /// [`Error::Preview`] for a resolution outside 1–2400 dpi.
+    pub fn validate(&self) -> Result<()> {
+        self.stages.validate("plot")?;
+        match &self.format {
+            PlotFormat::Svg(_) => {}
+            PlotFormat::Gcode(o) => o.validate()?,
+            PlotFormat::Hpgl(o) => o.validate()?,
+            PlotFormat::Dxf(o) => o.validate()?,
+        }
+        if let Some(p) = &self.preview {
+            crate::output::check_dpi(p.dpi)?;
+        }
+        Ok(())
+    }
 }
 
 /// Everything [`plot_scene`] produces, in memory: nothing is written
@@ -213,6 +244,7 @@ impl Plotted {
 /// (see [`plot::run`]); [`Error::DeviceRange`] for HPGL beyond the device;
 /// [`Error::Preview`] when the preview cannot be rendered.
 pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
+    job.validate()?;
     if job.silhouettes {
         plot::occlude::mark_path_groups_solid(&mut scene);
     }
@@ -223,18 +255,9 @@ pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
     let scene = plot::run(scene, &stages)?;
     let (bytes, warnings) = match &job.format {
         PlotFormat::Svg(o) => (to_svg(&scene, o), Vec::new()),
-        PlotFormat::Gcode(o) => {
-            o.validate()?;
-            (to_gcode(&scene, o)?, gcode::unsupported(&scene, o))
-        }
-        PlotFormat::Hpgl(o) => {
-            o.validate()?;
-            (to_hpgl(&scene, o)?, hpgl::unsupported(&scene, o))
-        }
-        PlotFormat::Dxf(o) => {
-            o.validate()?;
-            (to_dxf(&scene, o), Vec::new())
-        }
+        PlotFormat::Gcode(o) => (to_gcode(&scene, o)?, gcode::unsupported(&scene, o)),
+        PlotFormat::Hpgl(o) => (to_hpgl(&scene, o)?, hpgl::unsupported(&scene, o)),
+        PlotFormat::Dxf(o) => (to_dxf(&scene, o), Vec::new()),
     };
     let png = match job.preview {
         Some(p) => {

@@ -14,6 +14,7 @@ pub(crate) mod flora;
 mod locate;
 mod plot;
 pub(crate) mod region;
+pub mod seed;
 mod stroke;
 mod valid;
 pub(crate) mod validate;
@@ -73,8 +74,8 @@ pub struct SceneSpec {
     /// One line saying what the design is (shown by `moyo templates`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
-    /// The seed of every random choice (0 ..= 2^63−1).
-    #[serde(default)]
+    /// The seed of every random choice (0 ..= [`seed::MAX_SEED`], 2^63−1).
+    #[serde(default, deserialize_with = "seed::deserialize")]
     pub seed: u64,
     /// Paper.
     #[serde(default)]

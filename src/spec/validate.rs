@@ -19,12 +19,16 @@ use crate::units::MAX_COORD;
 pub struct FieldRange {
     /// The field's path, as errors name it (`layers[0].trees[1].count`).
     pub field: String,
-    /// The least value allowed.
+    /// The least value allowed (beyond 2⁵³, the nearest float inside
+    /// the range).
     pub lo: f64,
-    /// The greatest value allowed.
+    /// The greatest value allowed (likewise).
     pub hi: f64,
     /// Whether the field holds whole numbers.
     pub integer: bool,
+    /// For whole numbers, the bounds exactly (a seed's 2⁶³−1 has no
+    /// float).
+    pub exact: Option<[i128; 2]>,
 }
 
 /// A number validation checks against a range.
@@ -33,21 +37,59 @@ pub(crate) trait Bound: PartialOrd + Display + Copy {
     const INTEGER: bool;
     /// The value as a float, for [`FieldRange`] (exact up to 2⁵³).
     fn to_f64(self) -> f64;
+    /// The value exactly, for a whole number.
+    fn exact(self) -> Option<i128>;
 }
 
 macro_rules! bound {
-    ($integer:literal: $($t:ty),*) => {$(
+    ($($t:ty),*) => {$(
         impl Bound for $t {
-            const INTEGER: bool = $integer;
+            const INTEGER: bool = true;
             #[allow(clippy::cast_precision_loss, clippy::cast_lossless)]
             fn to_f64(self) -> f64 {
                 self as f64
             }
+            #[allow(clippy::cast_lossless)]
+            fn exact(self) -> Option<i128> {
+                Some(self as i128)
+            }
         }
     )*};
 }
-bound!(true: u8, u16, u32, u64, usize, i32, i64);
-bound!(false: f64);
+bound!(u8, u16, u32, u64, usize, i32, i64);
+
+impl Bound for f64 {
+    const INTEGER: bool = false;
+    fn to_f64(self) -> f64 {
+        self
+    }
+    fn exact(self) -> Option<i128> {
+        None
+    }
+}
+
+/// The greatest float not above `x` (past 2⁵³ whole numbers have no
+/// float of their own: a range's float bound must not lie outside it).
+#[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation)]
+fn float_at_most(x: i128) -> f64 {
+    let f = x as f64;
+    if f as i128 > x {
+        f.next_down()
+    } else {
+        f
+    }
+}
+
+/// The least float not below `x`.
+#[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation)]
+fn float_at_least(x: i128) -> f64 {
+    let f = x as f64;
+    if (f as i128) < x {
+        f.next_up()
+    } else {
+        f
+    }
+}
 
 thread_local! {
     /// The ranges checked while [`recording`] runs, in the order checked.
@@ -67,11 +109,17 @@ pub(crate) fn recording(validate: impl FnOnce() -> Result<()>) -> (Result<()>, V
 pub(crate) fn range<T: Bound>(field: &str, v: T, lo: T, hi: T) -> Result<()> {
     RECORDED.with(|r| {
         if let Some(ranges) = r.borrow_mut().as_mut() {
+            let exact = lo.exact().zip(hi.exact()).map(|(l, h)| [l, h]);
+            let (lo, hi) = match exact {
+                Some([l, h]) => (float_at_least(l), float_at_most(h)),
+                None => (lo.to_f64(), hi.to_f64()),
+            };
             ranges.push(FieldRange {
                 field: field.to_string(),
-                lo: lo.to_f64(),
-                hi: hi.to_f64(),
+                lo,
+                hi,
                 integer: T::INTEGER,
+                exact,
             });
         }
     });
@@ -174,7 +222,7 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
             ),
         ));
     }
-    range("seed", s.seed, 0, i64::MAX as u64)?;
+    range("seed", s.seed, 0, super::seed::MAX_SEED)?;
     page(s)?;
     range("output.precision", s.output.precision, 0, 8)?;
     range("limits.max_paths", s.limits.max_paths, 1, 5_000_000)?;

@@ -413,8 +413,15 @@ async fn fields(State(app): State<App>) -> Response {
             .filter(|r| seen.insert(r.field.clone()))
             .map(|r| {
                 let now = number_at(value, &r.field);
-                json!({"field": r.field, "kind": "number", "lo": r.lo, "hi": r.hi,
-                       "integer": r.integer, "value": now})
+                // Whole-number bounds are written exactly (a seed's
+                // 2⁶³−1 has no float); a reader in JavaScript gets the
+                // nearest float, and the text for showing it.
+                let (lo, hi, text) = match r.exact {
+                    Some([lo, hi]) => (json!(lo), json!(hi), format!("{lo} – {hi}")),
+                    None => (json!(r.lo), json!(r.hi), format!("{} – {}", r.lo, r.hi)),
+                };
+                json!({"field": r.field, "kind": "number", "lo": lo, "hi": hi,
+                       "range": text, "integer": r.integer, "value": now})
             })
             .collect();
         list.extend(
