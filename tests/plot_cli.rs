@@ -1155,3 +1155,109 @@ fn an_output_extension_that_names_no_format_is_refused() {
         .unwrap()
         .contains("G21"));
 }
+
+/// A directory holding the real-world drawing `name` of tests/data/.
+fn with_real_world(name: &str) -> TempDir {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let from = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name);
+    fs::copy(from, dir.path().join(name)).expect("tests/data holds it");
+    dir
+}
+
+/// The pen numbers an HPGL program selects, `SP0` (put the pen away) left
+/// out.
+fn hpgl_pens(hpgl: &str) -> std::collections::BTreeSet<u32> {
+    hpgl.split(';')
+        .filter_map(|c| c.trim().strip_prefix("SP")?.parse().ok())
+        .filter(|&n| n != 0)
+        .collect()
+}
+
+/// The `requests` logo (tests/data/): an Illustrator export of 3,683 paths
+/// in 1,978 colours, which once became 1,977 pens (`SP1`…`SP1977`). Pens
+/// come from colours by a policy with a cap, and the merge is said.
+#[test]
+fn a_logo_of_two_thousand_colours_plots_with_a_handful_of_pens() {
+    let logo = "requests-logo.svg";
+    let dir = with_real_world(logo);
+    for (args, most) in [
+        (&[][..], 8),
+        (&["--pens", "3"], 3),
+        (&["--single-layer"], 1),
+    ] {
+        let out = moyo(&dir)
+            .args(["plot", logo, "-o", "out.hpgl"])
+            .args(args)
+            .assert()
+            .success();
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        let pens = hpgl_pens(&fs::read_to_string(dir.path().join("out.hpgl")).unwrap());
+        assert!(
+            !pens.is_empty() && pens.iter().all(|&p| p <= most),
+            "{args:?}: pens {pens:?}"
+        );
+        if args.is_empty() {
+            assert!(
+                stderr.contains("1,978 colours merged into 8 pens"),
+                "{stderr}"
+            );
+            assert_eq!(pens.len(), 8, "the cap is used: {pens:?}");
+        }
+    }
+    // One pen a colour would pass the 999 a plot allows: refused, saying
+    // how to merge, and nothing written.
+    fs::remove_file(dir.path().join("out.hpgl")).unwrap();
+    moyo(&dir)
+        .args(["plot", logo, "-o", "out.hpgl", "--pens", "0"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("1,978 pens").and(predicate::str::contains("--pens N")));
+    assert!(!dir.path().join("out.hpgl").exists());
+}
+
+/// A graph from graphviz (tests/data/, from the Rust book): graphviz puts a
+/// white page with `stroke="transparent"` behind every graph. It is paint,
+/// not line work: no pen draws a border round the page, and `moyo fill`
+/// fills the graph's boxes, not the page (it once stippled the whole page:
+/// 84,942 dots).
+#[test]
+fn graphviz_s_page_behind_the_graph_is_neither_plotted_nor_filled() {
+    let graph = "graphviz-trpl04-01.svg";
+    let dir = with_real_world(graph);
+    moyo(&dir)
+        .args(["plot", graph, "-o", "out.svg"])
+        .assert()
+        .success();
+    let out = fs::read_to_string(dir.path().join("out.svg")).unwrap();
+    let plotted = moyo::import_svg(&out, &moyo::ImportOptions::DEFAULT)
+        .unwrap()
+        .scene;
+    let page = kurbo::Rect::new(0.0, 0.0, plotted.page.width, plotted.page.height);
+    let mut paths = 0;
+    plotted.visit_paths(|_, p, t| {
+        paths += 1;
+        let b = kurbo::Shape::bounding_box(&(t * p.path.clone()));
+        assert!(
+            b.width() < 0.9 * page.width() || b.height() < 0.9 * page.height(),
+            "a path round the page: {b:?} on {page:?}"
+        );
+    });
+    assert!(paths > 20, "the graph is drawn: {paths} paths");
+    let out = moyo(&dir)
+        .args(["fill", graph, "-o", "filled.svg", "--pattern", "stipple"])
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    let dots: usize = stderr
+        .split("the stipple fill: ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{stderr}"));
+    assert!(
+        (100..2_000).contains(&dots),
+        "{dots} dots: the boxes, not the page"
+    );
+}
