@@ -187,3 +187,24 @@ fn the_pen_stage_can_be_turned_off() {
     assert!(on.doubled_mm < 0.005 * on.pen_down_mm, "{on:?}");
     assert!(on.pen_down_mm < 0.7 * off.pen_down_mm);
 }
+
+/// No template draws past its page's margins — what `moyo render` warns
+/// of, since plotters clip or crash at the page edge (`kimono-vine` once
+/// overran its own margin): a newcomer's first renders print no warning.
+#[test]
+fn no_template_draws_past_its_margins() {
+    let slack = 0.01;
+    let past: Vec<String> = rendered::plotted()
+        .iter()
+        .filter_map(|(t, r)| {
+            let b = r.scene.bounds()?;
+            let area = r.scene.page.drawable();
+            let inside = b.x0 >= area.x0 - slack
+                && b.y0 >= area.y0 - slack
+                && b.x1 <= area.x1 + slack
+                && b.y1 <= area.y1 + slack;
+            (!inside).then(|| format!("{}: drawing {b:?}, margins {area:?}", t.name))
+        })
+        .collect();
+    assert!(past.is_empty(), "{}", past.join("\n"));
+}

@@ -1261,3 +1261,32 @@ fn graphviz_s_page_behind_the_graph_is_neither_plotted_nor_filled() {
         "{dots} dots: the boxes, not the page"
     );
 }
+
+/// Hiding lines takes the fill off every partly hidden shape (its outline
+/// is open pieces now). The plot then carries no fill at all — not the
+/// fills of the shapes nothing hides and none of the others, which looked
+/// like a fault in Inkscape — and the colours of the whole shapes go to
+/// the preview's fill layer. Ferris (tests/data/) has both kinds.
+#[test]
+fn a_plot_with_hidden_lines_carries_no_fill_and_its_preview_keeps_the_colours() {
+    let ferris = "ferris-panics.svg";
+    let dir = with_real_world(ferris);
+    moyo(&dir)
+        .args(["plot", ferris, "--occlude", "-o", "out.svg"])
+        .args(["--preview-svg", "preview.svg"])
+        .assert()
+        .success();
+    let out = fs::read_to_string(dir.path().join("out.svg")).unwrap();
+    let filled = out
+        .split("<path")
+        .skip(1)
+        .filter(|p| p.split('>').next().unwrap_or("").contains("fill:#"))
+        .count();
+    assert_eq!(filled, 0, "filled paths in the plot");
+    let preview = fs::read_to_string(dir.path().join("preview.svg")).unwrap();
+    let fills_layer = preview
+        .split("inkscape:label=\"%preview fills\"")
+        .nth(1)
+        .expect("the preview has a fill layer");
+    assert!(fills_layer.matches("fill:#").count() >= 5, "{fills_layer}");
+}

@@ -128,7 +128,7 @@ impl PlotOptions {
     }
 
     /// True when a stage needs one flat layer per pen.
-    fn per_pen(&self) -> bool {
+    pub fn per_pen(&self) -> bool {
         self.dedupe.is_some()
             || self.debris.is_some()
             || self.blots.is_some()

@@ -252,7 +252,14 @@ pub fn plot_scene(mut scene: Scene, job: &PlotJob) -> Result<Plotted> {
         inside_first: job.stages.inside_first || job.format.cuts(),
         ..job.stages.clone()
     };
-    let scene = plot::run(scene, &stages)?;
+    let mut scene = plot::run(scene, &stages)?;
+    if stages.occlude.is_some() && !stages.per_pen() {
+        // Hiding took the fill off every partly hidden shape (its outline
+        // is open pieces now); the whole ones lose theirs too, to the
+        // preview's fill layer, so that the plot carries no fill at all
+        // rather than some (the per-pen stages do this themselves).
+        plot::occlude::fills_behind(&mut scene);
+    }
     let (bytes, warnings) = match &job.format {
         PlotFormat::Svg(o) => (to_svg(&scene, o), Vec::new()),
         PlotFormat::Gcode(o) => (to_gcode(&scene, o)?, gcode::unsupported(&scene, o)),
