@@ -1,6 +1,7 @@
 //! The README and the guide (`docs/guide/`) say what works: every scene
 //! description they show parses and renders, every `moyo` command of the
-//! README runs as written, and every file and chapter they name exists.
+//! README's tour and of the guide's shell blocks runs as written, and every
+//! file and chapter they name exists.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -102,6 +103,69 @@ fn the_readme_tour_runs_as_written() {
         }
     }
     assert!(ran >= 10, "the tour has its commands ({ran} ran)");
+}
+
+/// The words of a shell command line: split at blanks, except inside
+/// single or double quotes (which are taken off).
+fn shell_words(line: &str) -> Vec<String> {
+    let mut words = Vec::new();
+    let mut word: Option<String> = None;
+    let mut quote: Option<char> = None;
+    for c in line.chars() {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), c) => word.get_or_insert_with(String::new).push(c),
+            (None, '\'' | '"') => {
+                quote = Some(c);
+                word.get_or_insert_with(String::new);
+            }
+            (None, c) if c.is_whitespace() => words.extend(word.take()),
+            (None, c) => word.get_or_insert_with(String::new).push(c),
+        }
+    }
+    assert!(quote.is_none(), "an unclosed quote: {line}");
+    words.extend(word);
+    words
+}
+
+/// Every example of the guide runs as written: each `moyo` line of a
+/// chapter's shell blocks (```` ```sh ````; a plain block is a synopsis,
+/// with placeholders), in order, in a fresh folder per chapter that sees
+/// the repository's `examples/`, succeeds and writes the files it names.
+#[test]
+fn every_example_of_the_guide_runs_as_written() {
+    let mut ran = 0;
+    for (path, text) in documents().into_iter().skip(1) {
+        let dir = tempdir();
+        std::os::unix::fs::symlink(root().join("examples"), dir.path().join("examples")).unwrap();
+        for block in blocks(&text, "```sh\n") {
+            for line in block.lines() {
+                let command = line.split(" # ").next().unwrap().trim();
+                let Some(args) = command.strip_prefix("moyo ") else {
+                    continue;
+                };
+                let args = shell_words(args);
+                let out = moyo(&dir).args(&args).assert();
+                let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+                assert!(
+                    out.get_output().status.success(),
+                    "{}: `{command}` failed:\n{stderr}",
+                    path.display()
+                );
+                for (flag, file) in args.iter().zip(args.iter().skip(1)) {
+                    if ["-o", "--png", "--obj", "--frames"].contains(&flag.as_str()) {
+                        assert!(
+                            dir.path().join(file).exists(),
+                            "{}: `{command}` wrote no {file}",
+                            path.display()
+                        );
+                    }
+                }
+                ran += 1;
+            }
+        }
+    }
+    assert!(ran >= 12, "the guide shows its examples ({ran} ran)");
 }
 
 /// Links to files in the README and the guide point at files that exist,
