@@ -246,10 +246,27 @@ fn a_filled_outline_is_ready_for_the_pen() {
     let number = |v: &serde_json::Value, key: &str| v[key].as_f64().unwrap();
     for pattern in PATTERNS {
         let out = format!("{pattern}.svg");
-        moyo(&dir)
+        let said = moyo(&dir)
             .args(["fill", "gourd.svg", "-o", &out, "--pattern", pattern])
             .assert()
-            .success();
+            .success()
+            .get_output()
+            .stderr
+            .clone();
+        // The summary counts the fill as it counts the whole, as plotted:
+        // the fill is part of the whole.
+        let said = String::from_utf8_lossy(&said);
+        let counts: Vec<f64> = said
+            .split(['(', ';', ':', ','])
+            .filter_map(|part| part.split_whitespace().next()?.parse().ok())
+            .collect();
+        let [all_paths, all_mm, fill_paths, fill_mm, ..] = counts[..] else {
+            panic!("{said}")
+        };
+        assert!(
+            fill_paths <= all_paths && fill_mm <= all_mm,
+            "{pattern}: {said}"
+        );
         let s = stats_json(&dir, &out);
         let down = number(&s, "pen_down_mm");
         assert!(number(&s, "doubled_mm") <= 0.005 * down, "{pattern}: {s}");

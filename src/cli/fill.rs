@@ -193,6 +193,13 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
     }
     write_all_atomic(&files)?;
     let all = filled.plotted.stats();
+    // On a pen of its own the fill is counted as plotted, like the total
+    // (the pen stage joins its lines); on the input's pen, as drawn.
+    let fill = if filled.new_pen {
+        filled.plotted.pen_stats(filled.pen)
+    } else {
+        filled.fill
+    };
     eprintln!(
         "wrote {}{} ({} paths, {:.0} mm pen-down; the {} fill: {} paths, {:.0} mm, on {} pen {})",
         args.output.display(),
@@ -203,8 +210,8 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
         all.paths,
         all.pen_down_mm,
         job.pattern.name(),
-        filled.fill.paths,
-        filled.fill.pen_down_mm,
+        fill.paths,
+        fill.pen_down_mm,
         if filled.new_pen { "new" } else { "the input's" },
         filled.pen,
     );
