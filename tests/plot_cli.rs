@@ -499,6 +499,8 @@ fn an_option_the_output_ignores_is_refused_with_why() {
         ("out.dxf", &["--refill", "500"], "a machine option"),
         ("out.hpgl", &["--precision", "2"], "the output is HPGL"),
         ("out.svg", &["--dpi", "300"], "--png"),
+        // A file with layers has its pens: --pens would group nothing.
+        ("out.svg", &["--pens", "3"], "its layers are its pens"),
     ] {
         let out = moyo(&dir)
             .args(["plot", "hem.svg", "-o", output])

@@ -176,7 +176,7 @@ pub(crate) fn fill(args: &FillArgs) -> Result<(), CliError> {
     let mut outputs: Vec<Named<'_>> = vec![("-o", &args.output)];
     outputs.extend(args.png.as_deref().map(|p| ("--png", p)));
     check_outputs(&inputs, &outputs)?;
-    let imported = load_svg(&args.input, &args.pens.import_options())?;
+    let imported = load_svg(&args.input, &args.pens)?;
     let job = args.job()?;
     // Everything is computed before anything is written.
     let filled = project::fill_scene(imported.scene, &job)

@@ -300,9 +300,20 @@ impl PenArgs {
     }
 }
 
-/// Reads the SVG at `path`, telling what its import left out.
-pub(crate) fn load_svg(path: &Path, options: &ImportOptions) -> Result<Imported, CliError> {
-    let imported = project::read_svg(path, options)?;
+/// Reads the SVG at `path` with the pens `pens` asks for, telling what
+/// its import left out. `--pens` on a file whose Inkscape layers are its
+/// pens would change nothing: refused.
+pub(crate) fn load_svg(path: &Path, pens: &PenArgs) -> Result<Imported, CliError> {
+    let imported = project::read_svg(path, &pens.import_options())?;
+    if let (Some(n), true) = (pens.pens, imported.pens_from_layers) {
+        return Err(CliError::Message(format!(
+            "--pens {n}: {} has Inkscape layers, and its layers are its pens ({}); \
+             --pens groups the colours of a file without layers. Leave it out, \
+             or give --single-layer for one pen",
+            path.display(),
+            imported.scene.pens.len()
+        )));
+    }
     for w in &imported.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }
@@ -735,7 +746,7 @@ pub(crate) fn plot(args: &PlotArgs) -> Result<(), CliError> {
     let job = args.job(device)?;
     args.refuse_unused(&job.format)?;
     job.validate().map_err(|e| as_typed(e, PLOT_OPTIONS))?;
-    let imported = load_svg(&args.input, &job.import)?;
+    let imported = load_svg(&args.input, &args.pens)?;
     // The stages join, split and drop paths: say what came in too.
     let read = plot::stats(&imported.scene, &speeds).paths;
     // Everything is computed before anything is written.
@@ -796,7 +807,7 @@ struct Figures {
 /// `moyo stats`.
 pub(crate) fn stats(args: &StatsArgs) -> Result<(), CliError> {
     let speeds = args.speeds.speeds()?;
-    let imported = load_svg(&args.input, &args.pens.import_options())?;
+    let imported = load_svg(&args.input, &args.pens)?;
     let s = plot::stats(&imported.scene, &speeds);
     let mut out = std::io::stdout().lock();
     if args.json {

@@ -275,6 +275,10 @@ pub struct Imported {
     /// clipping, hidden layers…), in a fixed order. Empty when the import
     /// is exact.
     pub warnings: Vec<String>,
+    /// Whether the pens are the document's Inkscape layers (its author's
+    /// pens, which [`ImportOptions::max_pens`] does not regroup), rather
+    /// than grouped from colours.
+    pub pens_from_layers: bool,
 }
 
 /// Reads an SVG document into a scene (see the module documentation for
@@ -398,7 +402,8 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
     }
     warnings.extend(source.warnings);
 
-    let (buckets, stacked) = match options.pens {
+    // Layers are in the document's paint order; colours are not.
+    let (buckets, pens_from_layers) = match options.pens {
         PenGrouping::Auto if !source.layers.is_empty() => {
             (pens::by_layer(&source.layers, &walked, &mut warnings), true)
         }
@@ -425,12 +430,16 @@ pub fn import_svg(text: &str, options: &ImportOptions) -> Result<Imported> {
     let scene = pens::assemble(
         page,
         buckets,
-        stacked,
+        pens_from_layers,
         walked.drawn,
         embedded_description(text),
         &mut warnings,
     );
-    Ok(Imported { scene, warnings })
+    Ok(Imported {
+        scene,
+        warnings,
+        pens_from_layers,
+    })
 }
 
 /// An `Error::Parse` without a position.
