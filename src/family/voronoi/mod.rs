@@ -5,7 +5,10 @@
 //! Sites are spread over the region ([`crate::geom::sample`]) or given by
 //! hand (`sites.points`: those inside the region, each once), relaxed
 //! (Lloyd), and the diagram is clipped to the region exactly
-//! ([`crate::geom::voronoi`]). Only the spreading draws random numbers, so
+//! ([`crate::geom::voronoi`]) — one diagram for each connected part of a
+//! region in pieces, so no cell reaches across a gap (a rose window's
+//! tracery, the space between two shapes) to leave a sliver on the far
+//! side. Only the spreading draws random numbers, so
 //! the sites a distribution spread, given back as points
 //! ([`crate::project::voronoi_sites`]), draw the same pattern. Each kind
 //! listed in `draw` is a group
@@ -83,10 +86,10 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
         .draw
         .iter()
         .any(|d| matches!(d, Draw::Cells | Draw::Inset));
-    let diagram = if needs_diagram {
-        Some(Diagram::new(&sites, &domain, &options)?)
+    let parts = if needs_diagram {
+        cells_by_part(&sites, &region, &domain, &options)?
     } else {
-        None
+        Vec::new()
     };
     let edges = if spec.draw.contains(&Draw::Tour) {
         delaunay_edges(&sites, &domain, &options)?
@@ -98,8 +101,11 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
         let mut part = Group::new(&id);
         let paths: Vec<(String, BezPath)> = match draw {
             Draw::Cells => {
-                let diagram = diagram.as_ref().expect("made for cells");
-                numbered(&id, "stroke", cell_network(diagram, spec.outline))
+                let strokes = parts
+                    .iter()
+                    .flat_map(|p| cell_network(&p.diagram, &p.domain, spec.outline))
+                    .collect();
+                numbered(&id, "stroke", strokes)
             }
             Draw::Delaunay => {
                 // The mesh's own outline lies a hair inside the region (see
@@ -110,7 +116,13 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
                 }
                 numbered(&id, "stroke", strokes)
             }
-            Draw::Inset => inset(spec, diagram.as_ref().expect("made for inset"), &id)?,
+            Draw::Inset => {
+                let mut insets = Vec::new();
+                for p in &parts {
+                    insets.extend(inset(spec, p, &id)?);
+                }
+                insets
+            }
             Draw::Sites => {
                 let width = cx.pen_width();
                 let radius = |p: Point| match (spec.dot_range, &density) {
@@ -140,7 +152,7 @@ pub(super) fn build(spec: &VoronoiSpec, group_id: &str, cx: &mut Context<'_>) ->
         group.push_group(part);
     }
     if cx.regions_wanted() {
-        let offered = offered(spec, diagram.as_ref(), &sites, &domain, &region, &options)?;
+        let offered = offered(spec, &parts, &sites, &domain, &region, &options)?;
         cx.offer(offered);
     }
     cx.advance(1);
@@ -228,21 +240,21 @@ fn density<'d>(
 /// are all it draws) — or its cells when it draws none of them.
 fn offered(
     spec: &VoronoiSpec,
-    diagram: Option<&Diagram>,
+    parts: &[Part],
     sites: &[Point],
     domain: &Domain,
     region: &Region,
     options: &CellOptions,
 ) -> Result<Vec<Region>> {
-    let cells = |diagram: &Diagram| -> Vec<Region> {
-        diagram
-            .cells()
+    let cells = |parts: &[Part]| -> Vec<Region> {
+        parts
             .iter()
+            .flat_map(|p| p.diagram.cells())
             .filter(|c| !c.is_empty())
             .map(|c| c.to_region())
             .collect()
     };
-    if spec.draw.contains(&Draw::Delaunay) && diagram.is_none() {
+    if spec.draw.contains(&Draw::Delaunay) && parts.is_empty() {
         let mesh = mesh::triangulate(sites, region)?;
         return Ok(mesh
             .triangles
@@ -250,14 +262,21 @@ fn offered(
             .filter_map(|&t| Region::polygon(&mesh.corners(t)).ok())
             .collect());
     }
-    match diagram {
-        Some(d) if spec.draw.contains(&Draw::Inset) => Ok(inset(spec, d, "")?
-            .into_iter()
-            .map(|(_, path)| Region::from_normalised(path))
-            .collect()),
-        Some(d) => Ok(cells(d)),
-        None => Ok(cells(&Diagram::new(sites, domain, options)?)),
+    if parts.is_empty() {
+        return Ok(cells(&cells_by_part(sites, region, domain, options)?));
     }
+    if spec.draw.contains(&Draw::Inset) {
+        let mut insets = Vec::new();
+        for p in parts {
+            insets.extend(
+                inset(spec, p, "")?
+                    .into_iter()
+                    .map(|(_, path)| Region::from_normalised(path)),
+            );
+        }
+        return Ok(insets);
+    }
+    Ok(cells(parts))
 }
 
 /// The sites relaxed as the description says, with a note on how far
@@ -572,9 +591,9 @@ fn darkness_sampled(
 /// Each cell shrunk by `inset` and, with `round`, its corners rounded: the
 /// cell eroded by `inset + round` and grown back by `round` (an opening),
 /// which rounds convex corners to that radius.
-fn inset(spec: &VoronoiSpec, diagram: &Diagram, id: &str) -> Result<Vec<(String, BezPath)>> {
+fn inset(spec: &VoronoiSpec, part: &Part, id: &str) -> Result<Vec<(String, BezPath)>> {
     let mut out = Vec::new();
-    for (i, cell) in diagram.cells().iter().enumerate() {
+    for (&i, cell) in part.members.iter().zip(part.diagram.cells()) {
         if cell.is_empty() {
             continue;
         }
@@ -589,18 +608,12 @@ fn inset(spec: &VoronoiSpec, diagram: &Diagram, id: &str) -> Result<Vec<(String,
     Ok(out)
 }
 
-/// One pen-down line through the sites of each connected part of `region`,
-/// the pen lifted between parts: a line across blank paper from one shape
-/// to another is no part of the pattern.
-fn tours(sites: &[Point], edges: &[[usize; 2]], region: &Region) -> BezPath {
-    let parts = region.components();
-    if parts.len() <= 1 {
-        return tour_path(sites, edges);
-    }
+/// The index of the part of `parts` each site lies in. A site on no
+/// part's inside (a hair outside, by rounding) goes with the first part
+/// whose bounds hold it.
+fn part_of(sites: &[Point], parts: &[Region]) -> Vec<usize> {
     let bounds: Vec<Rect> = parts.iter().map(Region::bounds).collect();
-    // A site on no part's inside (a hair outside, by rounding) goes with
-    // the first part whose bounds hold it.
-    let part_of: Vec<usize> = sites
+    sites
         .iter()
         .map(|&p| {
             let holding: Vec<usize> = (0..parts.len()).filter(|&k| bounds[k].contains(p)).collect();
@@ -611,7 +624,67 @@ fn tours(sites: &[Point], edges: &[[usize; 2]], region: &Region) -> BezPath {
                 .or(holding.first().copied())
                 .unwrap_or(0)
         })
-        .collect();
+        .collect()
+}
+
+/// The Voronoi cells of one connected part of the region: the diagram of
+/// the sites inside it, clipped to it alone.
+struct Part {
+    diagram: Diagram,
+    domain: Domain,
+    /// Each cell's site, as an index into all the sites.
+    members: Vec<usize>,
+}
+
+/// The cells of `sites` in `region`, part by part: a cell ends where its
+/// part of the region ends, and never reaches across a gap into another
+/// part (across a rose window's ring of tracery, or between two shapes
+/// of a fill, it would leave a sliver on the far side). A region in one
+/// piece is one diagram over `domain`.
+///
+/// # Errors
+/// As [`Diagram::new`].
+fn cells_by_part(
+    sites: &[Point],
+    region: &Region,
+    domain: &Domain,
+    options: &CellOptions,
+) -> Result<Vec<Part>> {
+    let parts = region.components();
+    if parts.len() <= 1 {
+        return Ok(vec![Part {
+            diagram: Diagram::new(sites, domain, options)?,
+            domain: domain.clone(),
+            members: (0..sites.len()).collect(),
+        }]);
+    }
+    let part_of = part_of(sites, &parts);
+    let mut out = Vec::new();
+    for (k, part) in parts.iter().enumerate() {
+        let members: Vec<usize> = (0..sites.len()).filter(|&i| part_of[i] == k).collect();
+        if members.is_empty() {
+            continue;
+        }
+        let points: Vec<Point> = members.iter().map(|&i| sites[i]).collect();
+        let domain = Domain::new(part, TOLERANCE)?;
+        out.push(Part {
+            diagram: Diagram::new(&points, &domain, options)?,
+            domain,
+            members,
+        });
+    }
+    Ok(out)
+}
+
+/// One pen-down line through the sites of each connected part of `region`,
+/// the pen lifted between parts: a line across blank paper from one shape
+/// to another is no part of the pattern.
+fn tours(sites: &[Point], edges: &[[usize; 2]], region: &Region) -> BezPath {
+    let parts = region.components();
+    if parts.len() <= 1 {
+        return tour_path(sites, edges);
+    }
+    let part_of = part_of(sites, &parts);
     let mut path = BezPath::new();
     for part in 0..parts.len() {
         let members: Vec<usize> = (0..sites.len()).filter(|&i| part_of[i] == part).collect();

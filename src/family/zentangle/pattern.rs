@@ -90,7 +90,7 @@ pub(super) fn cells_or_triangles(
         lines
     } else {
         let domain = Domain::new(region, TOLERANCE)?;
-        cell_network(&Diagram::new(&sites, &domain, &options)?, true)
+        cell_network(&Diagram::new(&sites, &domain, &options)?, &domain, true)
     };
     Ok(lines
         .into_iter()

@@ -1062,6 +1062,14 @@ fn voronoi_cells(prepared: &Prepared, domain: &Domain) -> Vec<Cell> {
         if polygon.len() > 1 && polygon.first() == polygon.last() {
             polygon.pop();
         }
+        // Sites on one circle (a ring of a rose window with nothing inside
+        // it) share a circumcentre, computed a hair apart for each face:
+        // the corners there turn any way, and a side whose direction is
+        // noise would cut the cell away. The cell is convex in exact
+        // arithmetic, so its hull is the cell.
+        if !is_convex(&polygon) {
+            polygon = convex_hull(&polygon);
+        }
         if closed && polygon.len() >= 3 {
             cells[tag as usize] = Cell {
                 contours: domain.clip_convex(&polygon),
@@ -1069,6 +1077,47 @@ fn voronoi_cells(prepared: &Prepared, domain: &Domain) -> Vec<Cell> {
         }
     }
     cells
+}
+
+/// Whether every corner of `polygon` turns left (anticlockwise, positive
+/// area).
+fn is_convex(polygon: &[Point]) -> bool {
+    let n = polygon.len();
+    (0..n).all(|k| {
+        let (a, b, c) = (polygon[k], polygon[(k + 1) % n], polygon[(k + 2) % n]);
+        (b - a).cross(c - b) > 0.0
+    })
+}
+
+/// The convex hull of `points`, anticlockwise (Andrew's monotone chain),
+/// without collinear corners.
+fn convex_hull(points: &[Point]) -> Vec<Point> {
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    sorted.dedup();
+    if sorted.len() < 3 {
+        return sorted;
+    }
+    let mut hull: Vec<Point> = Vec::with_capacity(2 * sorted.len());
+    for pass in [
+        &sorted[..],
+        &sorted.iter().rev().copied().collect::<Vec<_>>()[..],
+    ] {
+        let floor = hull.len();
+        for &p in pass {
+            while hull.len() >= floor + 2 {
+                let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
+                if (b - a).cross(p - b) > 0.0 {
+                    break;
+                }
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        // Each chain's last point starts the other.
+        hull.pop();
+    }
+    hull
 }
 
 /// The circumcentre of a triangle, computed relative to its first corner

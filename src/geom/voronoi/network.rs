@@ -4,7 +4,7 @@
 
 use kurbo::{BezPath, Point, Vec2};
 
-use super::Diagram;
+use super::{Diagram, Domain};
 use crate::geom::PointIndex;
 
 /// How far (mm) beyond an edge's middle the other side is probed: well
@@ -13,15 +13,17 @@ use crate::geom::PointIndex;
 const PROBE: f64 = 1e-5;
 
 /// The cells' outlines with every edge once: an edge two cells share is
-/// drawn by the cell of the lower site, an edge on the region's outline by
-/// its only cell, when `outline` asks for the region's outline. Runs of
-/// drawn edges along a contour are one stroke (a closed one when the whole
-/// contour is drawn).
+/// drawn by the cell of the lower site, an edge on the region's outline
+/// (`domain`'s, holes included) by its only cell, when `outline` asks for
+/// the region's outline. Runs of drawn edges along a contour are one
+/// stroke (a closed one when the whole contour is drawn).
 ///
-/// Which cell is across an edge is the site nearest to a point just
-/// outside the edge's middle: the neighbour for a shared edge (the edge
-/// lies on their bisector), the cell's own site on the region's outline.
-pub(crate) fn cell_network(diagram: &Diagram, outline: bool) -> Vec<BezPath> {
+/// An edge lies on the outline when a point just beyond its middle lies
+/// outside the region; else the cell across is the site nearest to that
+/// point (the edge lies on their bisector). The nearest site alone cannot
+/// tell: beyond a narrow hole (a rose window's ring of tracery) the
+/// nearest site may be another cell's, across the hole.
+pub(crate) fn cell_network(diagram: &Diagram, domain: &Domain, outline: bool) -> Vec<BezPath> {
     let cells = diagram.cells();
     // Sites without a cell (merged, dropped, outside) are never the nearest.
     let owners: Vec<Point> = diagram
@@ -48,11 +50,14 @@ pub(crate) fn cell_network(diagram: &Diagram, outline: bool) -> Vec<BezPath> {
                 .map(|k| {
                     let (a, b) = (contour[k], contour[(k + 1) % n]);
                     let across = beyond(a, b, owners[i]);
+                    if !domain.contains(across) {
+                        return outline;
+                    }
                     match index.nearest_within(across, f64::INFINITY) {
-                        // The cell's own site across: the region's outline.
-                        Some((j, _)) if j as usize == i => outline,
-                        Some((j, _)) => j as usize > i,
-                        None => outline,
+                        Some((j, _)) if j as usize != i => j as usize > i,
+                        // Inside, with no other cell across: a sliver the
+                        // clipping left on the outline.
+                        _ => outline,
                     }
                 })
                 .collect();
