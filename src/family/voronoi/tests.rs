@@ -872,7 +872,7 @@ fn samples(paths: &[BezPath], step: f64) -> Vec<Point> {
     let mut out = Vec::new();
     let mut start = Point::ZERO;
     for path in paths {
-        let mut line = |out: &mut Vec<Point>, p: Point| {
+        let line = |out: &mut Vec<Point>, p: Point| {
             let from = *out.last().expect("a move first");
             let n = (from.distance(p) / step).ceil().max(1.0) as usize;
             out.extend((1..=n).map(|k| from.lerp(p, k as f64 / n as f64)));
