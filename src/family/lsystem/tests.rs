@@ -166,7 +166,6 @@ fn a_sketch_lies_on_its_stroke_and_grows_with_its_steps() {
 
 #[test]
 fn a_sketch_stays_on_the_page_and_says_where_its_stroke_leaves_it() {
-    use crate::spec::{Format, SceneSpec};
     // A5 with 10 mm margins: 128 × 190 mm to draw in. The stroke runs
     // off the right edge, as a gesture past the paper's edge does.
     let table = "style = \"outline\"\n[layers.lsystem.sketch]\n\
@@ -178,13 +177,7 @@ fn a_sketch_stays_on_the_page_and_says_where_its_stroke_leaves_it() {
         b.x0 >= 0.0 && b.y0 >= 0.0 && b.x1 <= 128.0 && b.y1 <= 190.0,
         "{b:?} leaves the page"
     );
-    let spec = SceneSpec::parse(&test_scene::text("lsystem", table), Format::Toml).unwrap();
-    let notes: Vec<String> = crate::project::render(&spec)
-        .unwrap()
-        .notes
-        .into_iter()
-        .map(|n| n.text)
-        .collect();
+    let notes = test_scene::notes("lsystem", table);
     assert_eq!(notes.len(), 1, "{notes:?}");
     assert!(
         notes[0].starts_with("the stroke leaves the page (inside its margins) after"),
@@ -192,8 +185,7 @@ fn a_sketch_stays_on_the_page_and_says_where_its_stroke_leaves_it() {
     );
     // On the page, no warning.
     let inside = "[layers.lsystem.sketch]\npoints = [[64, 180], [64, 60]]\n";
-    let spec = SceneSpec::parse(&test_scene::text("lsystem", inside), Format::Toml).unwrap();
-    assert!(crate::project::render(&spec).unwrap().notes.is_empty());
+    assert!(test_scene::notes("lsystem", inside).is_empty());
 }
 
 #[test]

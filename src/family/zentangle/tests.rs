@@ -162,13 +162,7 @@ fn the_loop_stops_when_no_region_can_take_a_step_and_its_work_is_bounded() {
     // The scene says where it stopped, and draws that many steps.
     let table = "steps = 2000\nprocedures = [17]\n";
     let s = scene(table);
-    let spec = SceneSpec::parse(&text(table), Format::Toml).unwrap();
-    let notes: Vec<String> = crate::project::render(&spec)
-        .unwrap()
-        .notes
-        .into_iter()
-        .map(|n| n.text)
-        .collect();
+    let notes = test_scene::notes("zentangle", table);
     let stopped = notes[0]
         .split_once("the loop stopped after step ")
         .and_then(|(_, rest)| rest.split_once(' '))
