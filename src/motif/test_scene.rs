@@ -30,6 +30,17 @@ pub(crate) fn error(family: &str, table: &str) -> String {
     }
 }
 
+/// The notes a render of that description gives the user (their texts).
+pub(crate) fn notes(family: &str, table: &str) -> Vec<String> {
+    let spec = SceneSpec::parse(&text(family, table), Format::Toml).unwrap();
+    crate::project::render(&spec)
+        .unwrap()
+        .notes
+        .into_iter()
+        .map(|n| n.text)
+        .collect()
+}
+
 /// The scene of any description after its plot stages but the pen stage
 /// (layers, groups and ids kept, see
 /// [`crate::project::render_for_editing`]), with no user files.

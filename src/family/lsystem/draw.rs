@@ -35,6 +35,11 @@ impl Projection {
         }
     }
 
+    /// Its right and up in the drawing's frame.
+    pub(super) fn axes(&self) -> (DVec3, DVec3) {
+        (self.right, self.up)
+    }
+
     fn point(&self, p: DVec3) -> Point {
         Point::new(p.dot(self.right), -p.dot(self.up))
     }

@@ -39,7 +39,7 @@ mod tests;
 use kurbo::{Affine, Point, Rect};
 
 use crate::error::Result;
-use crate::family::lsystem::engine::{Skeleton, Turtle, TurtleOptions};
+use crate::family::lsystem::engine::{Prune, PruneScale, Skeleton, Turtle, TurtleOptions};
 use crate::geom::{PathWalker, Side, TOLERANCE};
 use crate::motif::limb::{strokes_first, THIN};
 use crate::motif::{fitted, flow_line, stroke_points, Context, Stroke};
@@ -72,11 +72,7 @@ pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) ->
     } else if let Some(line) = &spec.along {
         along(line, spec.count.unwrap_or(1), spec)
     } else if spec.at.is_empty() {
-        // Scene coordinates start at the margins' corner.
-        let frame = spec.fit.map_or_else(
-            || Rect::from_origin_size(Point::ZERO, cx.page().drawable().size()),
-            |[x0, y0, x1, y1]| Rect::new(x0, y0, x1, y1),
-        );
+        let frame = fit_frame(spec, cx);
         vec![fitted(flat.bounds(spec.style == LimbStyle::Outline), frame)]
     } else {
         let turn = Affine::rotate(spec.rotate.to_radians()) * Affine::scale(spec.step);
@@ -153,7 +149,35 @@ fn grow(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) -> Result<Skel
         let [x, y, z] = t.direction;
         options = options.with_tropism(glam::DVec3::new(x, y, z), t.elasticity);
     }
+    // Branches no pen draws are left out as the turtle meets them (a
+    // fitted ABOP 1.24a at n = 10 is millions of limbs under `MIN_LIMB`);
+    // not with ornaments, which sit on tips and marks of any size.
+    if spec.flowers.is_none() && spec.leaves.is_none() {
+        let (right, up) = Projection::of(spec.view.axes()).axes();
+        let scale = if spec.at.is_empty() && spec.along.is_none() {
+            let frame = fit_frame(spec, cx);
+            PruneScale::Fit(frame.width(), frame.height())
+        } else {
+            PruneScale::Scale(spec.step)
+        };
+        options = options.with_prune(Prune {
+            right,
+            up,
+            min_length: MIN_LIMB,
+            scale,
+        });
+    }
     Turtle::new(options).interpret(&word)
+}
+
+/// The frame a drawing placed neither `at` nor `along` is fitted into:
+/// `fit`, or the page inside its margins (scene coordinates start at the
+/// margins' corner).
+fn fit_frame(spec: &LSystemSpec, cx: &Context<'_>) -> Rect {
+    spec.fit.map_or_else(
+        || Rect::from_origin_size(Point::ZERO, cx.page().drawable().size()),
+        |[x0, y0, x1, y1]| Rect::new(x0, y0, x1, y1),
+    )
 }
 
 /// The symbols whose places the ornaments need.

@@ -166,7 +166,6 @@ fn a_sketch_lies_on_its_stroke_and_grows_with_its_steps() {
 
 #[test]
 fn a_sketch_stays_on_the_page_and_says_where_its_stroke_leaves_it() {
-    use crate::spec::{Format, SceneSpec};
     // A5 with 10 mm margins: 128 × 190 mm to draw in. The stroke runs
     // off the right edge, as a gesture past the paper's edge does.
     let table = "style = \"outline\"\n[layers.lsystem.sketch]\n\
@@ -178,13 +177,7 @@ fn a_sketch_stays_on_the_page_and_says_where_its_stroke_leaves_it() {
         b.x0 >= 0.0 && b.y0 >= 0.0 && b.x1 <= 128.0 && b.y1 <= 190.0,
         "{b:?} leaves the page"
     );
-    let spec = SceneSpec::parse(&test_scene::text("lsystem", table), Format::Toml).unwrap();
-    let notes: Vec<String> = crate::project::render(&spec)
-        .unwrap()
-        .notes
-        .into_iter()
-        .map(|n| n.text)
-        .collect();
+    let notes = test_scene::notes("lsystem", table);
     assert_eq!(notes.len(), 1, "{notes:?}");
     assert!(
         notes[0].starts_with("the stroke leaves the page (inside its margins) after"),
@@ -192,8 +185,7 @@ fn a_sketch_stays_on_the_page_and_says_where_its_stroke_leaves_it() {
     );
     // On the page, no warning.
     let inside = "[layers.lsystem.sketch]\npoints = [[64, 180], [64, 60]]\n";
-    let spec = SceneSpec::parse(&test_scene::text("lsystem", inside), Format::Toml).unwrap();
-    assert!(crate::project::render(&spec).unwrap().notes.is_empty());
+    assert!(test_scene::notes("lsystem", inside).is_empty());
 }
 
 #[test]
@@ -473,4 +465,88 @@ fn a_plant_in_front_hides_what_lies_behind_it() {
     let spec = crate::spec::SceneSpec::parse(&alone, crate::spec::Format::Toml).unwrap();
     let rendered = crate::project::render(&spec).unwrap();
     assert!((rendered.scene.stats().pen_down_mm - 120.0).abs() < 0.01);
+}
+
+/// ABOP fig. 1.24a at `n` fitted on A4 inside 10 mm margins (190 ×
+/// 277 mm), seen from the front as a render sees it: the limbs a render
+/// draws (each as its points, on the page), the turtle's work, the
+/// word's length and the limbs the skeleton holds, with or without
+/// `prune`.
+fn fitted_124a(n: usize, prune: bool) -> (Vec<Vec<Point>>, super::engine::Work, usize, usize) {
+    use super::draw::{flat, Projection};
+    use super::engine::{LSystem, Prune, PruneScale, Turtle, TurtleOptions};
+    use crate::family::lsystem::description::View;
+
+    let system = LSystem::parse(
+        "F",
+        &["F -> F[+F]F[-F]F"],
+        &std::collections::BTreeMap::new(),
+        "",
+        "t",
+    )
+    .unwrap();
+    let word = system
+        .derive(n, &mut crate::rng::Seed(1).stream(), super::MAX_MODULES)
+        .unwrap();
+    let view = Projection::of(View::default().axes());
+    let (right, up) = view.axes();
+    let frame = Rect::new(0.0, 0.0, 190.0, 277.0);
+    let mut options = TurtleOptions::DEFAULT.with_max_segments(super::MAX_SEGMENTS);
+    if prune {
+        options = options.with_prune(Prune {
+            right,
+            up,
+            min_length: super::MIN_LIMB,
+            scale: PruneScale::Fit(frame.width(), frame.height()),
+        });
+    }
+    let (skeleton, work) = Turtle::new(options).interpret_counted(&word).unwrap();
+    let flat = flat(&skeleton, &view);
+    let place = crate::motif::fitted(flat.bounds(false), frame);
+    let scale = place.determinant().abs().sqrt();
+    let drawn = flat
+        .limbs
+        .iter()
+        .filter(|l| l.length() * scale >= super::MIN_LIMB)
+        .map(|l| l.points.iter().map(|&p| place * p).collect())
+        .collect();
+    (drawn, work, word.len(), skeleton.limbs.len())
+}
+
+#[test]
+fn branches_no_pen_can_draw_are_left_out_as_the_turtle_meets_them() {
+    // Fitted on A4, a step of 1.24a is 277 mm / 3ⁿ: 0.13 mm at n = 7,
+    // so every limb is drawn; at n = 8, 0.042 mm, so the one-step
+    // limbs (under `MIN_LIMB`, 0.05 mm) are not.
+    let (all, unpruned, _, _) = fitted_124a(8, false);
+    let (drawn, pruned, _, _) = fitted_124a(8, true);
+    // The same limbs on the page (a pruned branch can lie outside what is
+    // drawn by less than `MIN_LIMB`, so the fit may move them by a hair).
+    assert_eq!(drawn.len(), all.len());
+    for (a, b) in drawn.iter().zip(&all) {
+        assert_eq!(a.len(), b.len());
+        assert!(a.iter().zip(b).all(|(p, q)| p.distance(*q) < 0.05));
+    }
+    // Only the one-step branches `[+F]` and `[-F]` are that small at
+    // n = 8: 819,202 modules interpreted against 976,561.
+    assert!(
+        pruned.interpreted + 100_000 < unpruned.interpreted,
+        "{pruned:?} against {unpruned:?}"
+    );
+
+    // n = 10 draws what n = 7 does (the limbs of 27 steps and more; a
+    // limb of 3 is 0.014 mm), and holds hardly more: the turtle skips the
+    // branches no pen draws, reading each once (and the word once more
+    // for the main axis, which sets the scale it prunes by), and
+    // interprets what it draws — 27 steps where n = 7 has one, 4.4
+    // million of the 24.4 million modules.
+    let (seven, at_seven, _, held_seven) = fitted_124a(7, true);
+    let (ten, at_ten, modules, held_ten) = fitted_124a(10, true);
+    assert_eq!(ten.len(), seven.len());
+    assert!(held_ten <= 2 * held_seven, "{held_ten} limbs held, {held_seven} at n = 7");
+    assert!(
+        at_ten.interpreted < modules / 5,
+        "{at_ten:?} in {modules} modules (n = 7: {at_seven:?})"
+    );
+    assert!(at_ten.read_ahead < 2 * modules + modules / 10, "{at_ten:?} in {modules} modules");
 }

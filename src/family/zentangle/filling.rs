@@ -39,6 +39,14 @@ use crate::rng::RandomStream;
 /// is held to after the pen stage (`tests/pen_stage.rs`).
 pub(super) const MAX_INK: f64 = 1.7;
 
+/// How many steps drawing nothing a region is given before it is left
+/// white. Among the templates a region that drew at all needed at most
+/// 11 (a ring-shaped section of `zentangle-geometric`, where most
+/// procedures place nothing); one that draws nothing under the ink limit
+/// may never draw (`zentangle-1` at 1,000 steps tried one 135,000 times
+/// before the loop gave up retrying).
+pub(super) const TRIES: u32 = 16;
+
 /// A white region waiting to be filled.
 #[derive(Debug, Clone)]
 struct Area {
@@ -53,6 +61,10 @@ struct Area {
     /// How deep it lies in tangles: 0 for a section, 1 inside an element
     /// of a section's tangle, …
     depth: u32,
+    /// Its place in the queue (see [`Filling::queue`]).
+    key: u64,
+    /// The steps tried in it that drew nothing.
+    failed: u32,
 }
 
 /// What one step drew.
@@ -114,6 +126,9 @@ pub(super) struct Filling<'a> {
     hand: RandomStream,
     /// The ink drawn so far.
     ink: Ink,
+    /// How many times a region was drawn in, whether or not the step
+    /// kept a mark (the loop's work, as a count).
+    attempts: usize,
 }
 
 impl<'a> Filling<'a> {
@@ -135,6 +150,7 @@ impl<'a> Filling<'a> {
             settings,
             hand,
             ink: Ink::new(pen, MAX_INK, settings.hatch),
+            attempts: 0,
         };
         let marks: Vec<Mark> = lines
             .into_iter()
@@ -220,6 +236,7 @@ impl<'a> Filling<'a> {
             return;
         }
         let id = self.areas.len();
+        let key = (radius * weight).to_bits();
         self.areas.push(Some(Area {
             region,
             seed,
@@ -227,8 +244,10 @@ impl<'a> Filling<'a> {
             radius,
             black,
             depth,
+            key,
+            failed: 0,
         }));
-        self.queue.push(((radius * weight).to_bits(), Reverse(id)));
+        self.queue.push((key, Reverse(id)));
     }
 
     /// The region the next automatic step will draw in, and the radius
@@ -300,18 +319,43 @@ impl<'a> Filling<'a> {
         self.areas.iter().flatten().count()
     }
 
-    /// One automatic step: the widest region gets the procedure its seed
-    /// names. `None` when no region is left.
+    /// How many times a region was drawn in so far, by the loop or by
+    /// hand, counting the tries that drew nothing.
+    #[cfg(test)]
+    pub(super) fn attempts(&self) -> usize {
+        self.attempts
+    }
+
+    /// How many white regions wide enough to draw in were made so far.
+    #[cfg(test)]
+    pub(super) fn made(&self) -> usize {
+        self.areas.len()
+    }
+
+    /// One automatic step: the widest region that can take one gets the
+    /// procedure its seed names. A step that draws nothing (every mark
+    /// over the ink limit, or none the procedure can place there) is not
+    /// a step: the region is tried again — the procedure, its elements
+    /// and their sizes are drawn anew — up to [`TRIES`] times, then
+    /// retired white, so that a region no procedure fits cannot hold the
+    /// loop. `None` when no region is left that can take a step.
     pub(super) fn step(&mut self, rng: &mut RandomStream) -> Result<Option<Step>> {
         while let Some((_, Reverse(id))) = self.queue.pop() {
-            if let Some(area) = self.areas[id].take() {
+            if let Some(mut area) = self.areas[id].take() {
                 let procedure = match area.seed {
                     Some(p) if self.allowed.procedures.contains(&p) => p,
                     // A seed left out: an allowed one of the same group.
                     Some(p) => self.allowed.pick(&[p], rng),
                     None => self.allowed.pick(G1, rng),
                 };
-                return self.draw_in(area, procedure, rng).map(Some);
+                if let Some(step) = self.draw_in(&area, procedure, rng)? {
+                    return Ok(Some(step));
+                }
+                area.failed += 1;
+                if area.failed < TRIES {
+                    self.queue.push((area.key, Reverse(id)));
+                    self.areas[id] = Some(area);
+                }
             }
         }
         Ok(None)
@@ -343,10 +387,22 @@ impl<'a> Filling<'a> {
                 )
             })?;
         let area = self.areas[id].take().expect("found alive");
-        self.draw_in(area, procedure, rng)
+        // A manual step is the user's: drawn even when it draws nothing.
+        Ok(self.draw_in(&area, procedure, rng)?.unwrap_or(Step {
+            procedure: Some(procedure),
+            ..Step::default()
+        }))
     }
 
-    fn draw_in(&mut self, area: Area, procedure: u32, rng: &mut RandomStream) -> Result<Step> {
+    /// Draws `procedure` in `area` and puts back the white pieces left;
+    /// `None` when the step drew nothing.
+    fn draw_in(
+        &mut self,
+        area: &Area,
+        procedure: u32,
+        rng: &mut RandomStream,
+    ) -> Result<Option<Step>> {
+        self.attempts += 1;
         let b = area.region.bounds();
         let Settings {
             scale,
@@ -386,6 +442,9 @@ impl<'a> Filling<'a> {
             flattening(pen),
             self.settings.fragment,
         )?;
+        if composed.strokes.is_empty() && composed.black.is_empty() {
+            return Ok(None);
+        }
         let ink = ink_of(&composed.strokes, &composed.black);
         self.ink.add(&ink);
         // A named tangle fills its section: what it leaves white stays so.
@@ -421,11 +480,11 @@ impl<'a> Filling<'a> {
             let depth = area.depth + u32::from(own.is_some());
             self.push(piece.region, own.or(area.seed), depth);
         }
-        Ok(Step {
+        Ok(Some(Step {
             procedure: Some(procedure),
             strokes: composed.strokes,
             black: composed.black,
-        })
+        }))
     }
 }
 

@@ -177,18 +177,30 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
         k: 0,
     };
     steps.by_hand(false, &mut filling, &mut rng, cx)?;
-    for _ in 0..spec.steps {
+    // The loop ends early when no white region left can take a step
+    // (none is wide enough, or every one left draws nothing under the
+    // ink limit): asking for more steps then costs nothing more.
+    let mut stopped = None;
+    for n in 0..spec.steps {
         let Some(step) = filling.step(&mut rng)? else {
+            stopped = Some((steps.k, n));
             break;
         };
         steps.emit(step, cx)?;
     }
     steps.by_hand(true, &mut filling, &mut rng, cx)?;
     let k = steps.k;
+    let stop = stopped.map_or_else(String::new, |(at, n)| {
+        format!(
+            "; the loop stopped after step {at} ({n} of the {} steps asked for): no white \
+             region left could take a step",
+            spec.steps
+        )
+    });
     cx.note(
         group_id,
         format!(
-            "{k} steps; {} white regions wide enough to draw in are left",
+            "{k} steps; {} white regions wide enough to draw in are left{stop}",
             filling.open()
         ),
     );

@@ -59,17 +59,15 @@ fn all() -> Allowed {
     }
 }
 
-#[test]
-fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
-    let page = Region::from_rect(Rect::new(0.0, 0.0, 150.0, 200.0)).unwrap();
-    let pen = 0.3;
-    let settings = Settings {
+/// The loop's settings of the tests that run it directly (a 0.3 mm pen).
+fn settings() -> Settings<'static> {
+    Settings {
         scale: 0.35,
         smallest: 1.5,
         wobble: 0.6,
         hand: 0.4,
         retrace: 0.2,
-        pen,
+        pen: 0.3,
         fragment: 1.2,
         hatch: Some(0.5),
         follow: 0.0,
@@ -77,9 +75,15 @@ fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
         tone: None,
         choice: None,
         depth: u32::MAX,
-    };
+    }
+}
+
+#[test]
+fn every_stroke_stays_in_its_region_and_the_widest_circle_never_grows() {
+    let page = Region::from_rect(Rect::new(0.0, 0.0, 150.0, 200.0)).unwrap();
+    let pen = settings().pen;
     let hand = Seed(11).derive("hand").stream();
-    let (mut filling, _) = Filling::new(&[page], Vec::new(), all(), settings, hand).unwrap();
+    let (mut filling, _) = Filling::new(&[page], Vec::new(), all(), settings(), hand).unwrap();
     let mut rng = Seed(11).derive("t").stream();
     let mut last = f64::INFINITY;
     for k in 0..60 {
@@ -120,6 +124,62 @@ fn whirls_stop_before_they_blot() {
     let densest = crate::plot::stats::densest(lines.iter(), s.pen_width(1));
     // The loop counts a little under what is drawn, and keeps a margin.
     assert!(densest <= 2.0, "{densest}× solid");
+}
+
+#[test]
+fn the_loop_stops_when_no_region_can_take_a_step_and_its_work_is_bounded() {
+    // Paradox whirls alone: each turn is a line a little inside the
+    // last, so the small regions they leave soon hold no whirl under the
+    // ink limit. Such a region used to go back as the widest and be
+    // tried again at every step left: 2,000 tries here.
+    let page = Region::from_rect(Rect::new(0.0, 0.0, 128.0, 190.0)).unwrap();
+    let whirls = Allowed {
+        procedures: vec![17],
+        elements: Shape::ALL.to_vec(),
+    };
+    let hand = Seed(5).derive("hand").stream();
+    let (mut filling, _) = Filling::new(&[page], Vec::new(), whirls, settings(), hand).unwrap();
+    let mut rng = Seed(5).derive("t").stream();
+    let asked = 2000;
+    let mut steps = 0;
+    while steps < asked && filling.step(&mut rng).unwrap().is_some() {
+        steps += 1;
+    }
+    assert!(steps < asked / 4, "{steps} steps: the loop did not stop");
+    assert_eq!(filling.open(), 0);
+    // Some regions drew nothing (else this tests nothing) and were tried
+    // at most `TRIES` times each.
+    let failed = filling.attempts() - steps;
+    assert!(failed > 0, "no step drew nothing");
+    assert!(
+        failed <= super::filling::TRIES as usize * filling.made(),
+        "{failed} tries drew nothing in {} regions",
+        filling.made()
+    );
+    // 711 here (192 steps).
+    assert!(filling.attempts() < asked / 2, "{} tries for {steps} steps", filling.attempts());
+
+    // The scene says where it stopped, and draws that many steps.
+    let table = "steps = 2000\nprocedures = [17]\n";
+    let s = scene(table);
+    let notes = test_scene::notes("zentangle", table);
+    let stopped = notes[0]
+        .split_once("the loop stopped after step ")
+        .and_then(|(_, rest)| rest.split_once(' '))
+        .and_then(|(k, _)| k.parse::<usize>().ok())
+        .unwrap_or_else(|| panic!("{notes:?}"));
+    assert!(stopped < 500, "{notes:?}");
+    assert!(notes[0].contains("of the 2000 steps asked for"), "{notes:?}");
+    let mut last = 0;
+    s.layers[0]
+        .content
+        .visit_paths(kurbo::Affine::IDENTITY, &mut |p, _| {
+            let k = p.id.split('.').nth(2).and_then(|g| g.split('-').nth(1));
+            if let Some(k) = k.and_then(|k| k.parse::<usize>().ok()) {
+                last = last.max(k);
+            }
+        });
+    assert_eq!(last, stopped, "{notes:?}");
 }
 
 #[test]

@@ -23,7 +23,7 @@ mod tests;
 mod turtle;
 
 pub use rewrite::{LSystem, Word};
-pub use turtle::{Turtle, TurtleOptions};
+pub use turtle::{Prune, PruneScale, Turtle, TurtleOptions, Work};
 
 /// A drawing in 3D: the limbs (pen-down runs of the turtle), the filled
 /// polygons of `{ … }`, and the marks the caller asked to record.

@@ -50,6 +50,53 @@ pub struct TurtleOptions {
     pub marks: String,
     /// The most drawing steps, polygon vertices and marks together.
     pub max_segments: usize,
+    /// Branches too small to be drawn, left out as the turtle meets
+    /// them. `None`: every branch is drawn.
+    pub prune: Option<Prune>,
+}
+
+/// Which branches the turtle leaves out: a branch `[ … ]` whose steps
+/// (`F`, `G`, `f`) add up to less than `min_length` on the page, so
+/// that every limb in it is shorter than that — provided it holds no
+/// recorded symbol and no polygon, and the turtle is not tracing one.
+/// Such a branch is skipped to its `]`; nothing of it is in the
+/// skeleton (nor among the limbs it would have started, nor in the
+/// drawing's extent).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prune {
+    /// The view's right and up (page x along `right`, page y along −`up`).
+    pub right: DVec3,
+    /// See `right`.
+    pub up: DVec3,
+    /// The shortest limb drawn, on the page (mm).
+    pub min_length: f64,
+    /// How the drawing is scaled to the page: `Scale(s)` mm a unit, or
+    /// `Fit(width, height)`: fitted into a frame this size, aspect kept
+    /// (then the scale is not known until the drawing is done; the turtle
+    /// prunes by the scale the drawing so far would have, which is never
+    /// smaller).
+    pub scale: PruneScale,
+}
+
+/// The modules of a word the turtle looked at (see
+/// [`Turtle::interpret_counted`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Work {
+    /// Interpreted: turned, moved, drew, …
+    pub interpreted: usize,
+    /// Read ahead from a `[` to learn whether its branch is too small to
+    /// draw (see [`Prune`]): those left out are read once, those drawn up
+    /// to where their steps reach the limit.
+    pub read_ahead: usize,
+}
+
+/// How a pruned drawing is scaled to the page (see [`Prune`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PruneScale {
+    /// Millimetres a unit.
+    Scale(f64),
+    /// Fitted into a frame this wide and high (mm).
+    Fit(f64, f64),
 }
 
 impl TurtleOptions {
@@ -63,6 +110,7 @@ impl TurtleOptions {
         tropism: None,
         marks: String::new(),
         max_segments: 10_000_000,
+        prune: None,
     };
 
     /// With this step length.
@@ -105,6 +153,12 @@ impl TurtleOptions {
     /// With at most this many drawing steps, vertices and marks.
     pub fn with_max_segments(mut self, max: usize) -> Self {
         self.max_segments = max;
+        self
+    }
+
+    /// Leaving out the branches `prune` says no pen can draw.
+    pub fn with_prune(mut self, prune: Prune) -> Self {
+        self.prune = Some(prune);
         self
     }
 }
@@ -312,6 +366,37 @@ impl Turtle {
     /// have more than `max_segments` steps, vertices and marks, or when
     /// the turtle leaves the finite numbers.
     pub fn interpret(&self, word: &Word) -> Result<Skeleton> {
+        self.interpret_counted(word).map(|(skeleton, _)| skeleton)
+    }
+
+    /// Draws a word, and says how much work that took (see [`Work`]).
+    ///
+    /// # Errors
+    /// As [`Turtle::interpret`].
+    pub fn interpret_counted(&self, word: &Word) -> Result<(Skeleton, Work)> {
+        let mut work = Work::default();
+        let mut start = Extent::default();
+        if let Some(Prune {
+            scale: PruneScale::Fit(..),
+            ..
+        }) = self.options.prune
+        {
+            // First the main axis alone, every branch skipped: the drawing
+            // spans at least that, so pruning starts near the scale the
+            // drawing will have rather than at the first step's.
+            let (_, axis, extent) = self.draw(word, true, start)?;
+            work = axis;
+            start = extent;
+        }
+        let (skeleton, all, _) = self.draw(word, false, start)?;
+        work.interpreted += all.interpreted;
+        work.read_ahead += all.read_ahead;
+        Ok((skeleton, work))
+    }
+
+    /// Draws `word` — with `axis`, its main axis only — pruning by the
+    /// extent of what is drawn and `start`.
+    fn draw(&self, word: &Word, axis: bool, start: Extent) -> Result<(Skeleton, Work, Extent)> {
         let o = &self.options;
         let field = word.shared.field.as_str();
         let alphabet = &word.shared.alphabet;
@@ -389,11 +474,41 @@ impl Turtle {
         let syms = &word.syms;
         let params = &word.params;
         let mut at = 0;
-        for (i, &sym) in syms.iter().enumerate() {
+        let mut work = Work::default();
+        let mut extent = start;
+        let mut i = 0;
+        while i < syms.len() {
+            let sym = syms[i];
+            work.interpreted += 1;
             let s = usize::from(sym);
             let a = arity[s];
             let first = (a > 0).then(|| params[at]);
             at += a;
+            if let (Some(prune), Command::Push, true) =
+                (o.prune, commands[s], canvas.polygons.is_empty())
+            {
+                let branch = Branch {
+                    word,
+                    commands: &commands,
+                    marks: &marks,
+                    arity: &arity,
+                    step: o.step,
+                };
+                let min = if axis {
+                    Some(f64::INFINITY)
+                } else {
+                    extent.below(&prune)
+                };
+                if let Some((end, after)) =
+                    min.and_then(|min| branch.small(i, at, min, axis, &mut work.read_ahead))
+                {
+                    // Left out whole: the turtle goes on after its `]`
+                    // in the state it had before its `[`.
+                    i = end + 1;
+                    at = after;
+                    continue;
+                }
+            }
             if marks[s] {
                 canvas.skeleton.marks.push(Mark {
                     symbol: alphabet.letters[s].0,
@@ -428,6 +543,9 @@ impl Turtle {
                         }
                     } else {
                         canvas.count(field)?;
+                        if let Some(prune) = &o.prune {
+                            extent.add(prune, from, state.pos);
+                        }
                         match state.open {
                             Some(slot) => {
                                 let limb = &mut canvas.open[slot];
@@ -516,6 +634,7 @@ impl Turtle {
                     }
                 }
             }
+            i += 1;
         }
         if let Some(slot) = state.open {
             canvas.close(slot);
@@ -525,9 +644,139 @@ impl Turtle {
                 canvas.close(slot);
             }
         }
-        Ok(canvas.skeleton)
+        Ok((canvas.skeleton, work, extent))
     }
 }
+
+/// The box on the page of the limbs drawn so far (in the drawing's
+/// units), for pruning a fitted drawing.
+#[derive(Debug, Clone, Copy)]
+struct Extent {
+    min: (f64, f64),
+    max: (f64, f64),
+}
+
+impl Default for Extent {
+    fn default() -> Self {
+        Extent {
+            min: (f64::INFINITY, f64::INFINITY),
+            max: (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        }
+    }
+}
+
+impl Extent {
+    /// Takes in the step from `a` to `b`, unless it is seen end on (a
+    /// limb of such steps only is not drawn, so its points are not in
+    /// the drawing's box).
+    fn add(&mut self, prune: &Prune, a: DVec3, b: DVec3) {
+        let flat = |p: DVec3| (p.dot(prune.right), -p.dot(prune.up));
+        let (a, b) = (flat(a), flat(b));
+        if (a.0 - b.0).hypot(a.1 - b.1) <= 1e-9 {
+            return;
+        }
+        for (x, y) in [a, b] {
+            self.min = (self.min.0.min(x), self.min.1.min(y));
+            self.max = (self.max.0.max(x), self.max.1.max(y));
+        }
+    }
+
+    /// The length (in the drawing's units) under which a branch is too
+    /// small to draw: `min_length` over the scale, which for a fitted
+    /// drawing is the one the drawing so far would be fitted at (as the
+    /// drawing grows its scale only shrinks and this only grows, so no
+    /// branch is left out that the finished drawing would draw). `None`
+    /// while that scale is not known (nothing drawn yet, or a point).
+    fn below(&self, prune: &Prune) -> Option<f64> {
+        let scale = match prune.scale {
+            PruneScale::Scale(s) => s,
+            PruneScale::Fit(width, height) => {
+                // As `motif::fitted` scales a drawing's box.
+                let (w, h) = (self.max.0 - self.min.0, self.max.1 - self.min.1);
+                match (w > 1e-12, h > 1e-12) {
+                    (true, true) => (width / w).min(height / h),
+                    (true, false) => width / w,
+                    (false, true) => height / h,
+                    (false, false) => return None,
+                }
+            }
+        };
+        (scale > 0.0 && scale.is_finite()).then(|| prune.min_length / scale)
+    }
+}
+
+/// A word as the turtle reads it, for looking ahead through a branch.
+struct Branch<'w> {
+    word: &'w Word,
+    commands: &'w [Command],
+    marks: &'w [bool],
+    arity: &'w [usize],
+    step: f64,
+}
+
+impl Branch<'_> {
+    /// Whether the branch whose `[` is module `open` (its parameters
+    /// ending at `at`) can be left out: each pen-down run in it (a limb,
+    /// at most: nested branches do not break their parent's) is shorter
+    /// than `min` units, all its steps together shorter than [`SPAN`] ×
+    /// `min` (so that what is left out reaches less than that past what
+    /// is drawn), and it records no symbol and traces no polygon. If so,
+    /// its `]` and where the parameters after it start. Reads up to where
+    /// it knows, counting each module read in `read`. With `whole`, any
+    /// branch can (to draw the main axis alone).
+    fn small(
+        &self,
+        open: usize,
+        mut at: usize,
+        min: f64,
+        whole: bool,
+        read: &mut usize,
+    ) -> Option<(usize, usize)> {
+        let (syms, params) = (&self.word.syms, &self.word.params);
+        // The pen-down run at each depth of the branch, and all its steps.
+        let mut runs = vec![0.0];
+        let mut travel = 0.0;
+        for (j, &sym) in syms.iter().enumerate().skip(open + 1) {
+            *read += 1;
+            let s = usize::from(sym);
+            let a = self.arity[s];
+            if self.marks[s] && !whole {
+                return None;
+            }
+            match self.commands[s] {
+                Command::Push => runs.push(0.0),
+                Command::Pop => {
+                    runs.pop();
+                    if runs.is_empty() {
+                        return Some((j, at + a));
+                    }
+                }
+                cmd @ (Command::Draw | Command::DrawNoVertex | Command::Move) => {
+                    let steps = if a > 0 { params[at].abs() } else { 1.0 };
+                    let length = steps * self.step;
+                    travel += length;
+                    let run = runs.last_mut().expect("inside the branch");
+                    *run = if cmd == Command::Move { 0.0 } else { *run + length };
+                    if *run >= min || travel >= SPAN * min || travel.is_nan() {
+                        return None;
+                    }
+                }
+                Command::PolygonStart | Command::PolygonEnd if !whole => return None,
+                _ => {}
+            }
+            at += a;
+        }
+        // Never closed: the branch runs to the end of the word.
+        None
+    }
+}
+
+/// How far a branch left out may reach, in limb limits (see
+/// [`Branch::small`]): ABOP 1.24a's two-level branches (`[+F[+F]F[-F]F]`
+/// at n − 2, 25 steps reaching 9 apart) are left out once a limb of
+/// 3 steps is too short, and a fitted drawing's scale moves by less than
+/// four limb limits over its size.
+const SPAN: f64 = 4.0;
 
 /// Turns the pair `(a, b)` so that `a` moves towards `b` by the angle of
 /// this sine and cosine.
