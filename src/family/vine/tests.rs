@@ -1,5 +1,7 @@
+use std::collections::BTreeMap;
+
 use glam::DVec3;
-use kurbo::{Affine, BezPath, ParamCurveArclen, Shape as _};
+use kurbo::{Affine, BezPath, ParamCurveArclen, Rect, Shape as _};
 
 use super::sight::{camera_for, Sight};
 use crate::family::vine::camera::Camera;
@@ -652,4 +654,37 @@ fn a_placed_camera_as_an_orbit_draws_the_same() {
     let leaning = "camera = { eye = [0, 0, 400], target = [0, 0, 0], up = [0, 1, 5] }\n";
     let spec: VineSpec = toml::from_str(leaning).unwrap();
     assert_eq!(spec.camera.orbit(), Some(Orbit::FRONT));
+}
+
+#[test]
+fn a_parameter_row_is_drawn_at_one_scale_on_one_ground() {
+    let rendered = crate::templates::get("vine-growth")
+        .unwrap()
+        .render()
+        .unwrap();
+    // Every panel's pole (560 tall) stands on the bottom edge of its box
+    // (198 mm down the page) and reaches 560 mm × the row's scale up,
+    // wherever its top is not hidden behind the vine.
+    let mut panels: BTreeMap<String, Rect> = BTreeMap::new();
+    for (id, path) in paths(&rendered.scene) {
+        if let Some((panel, _)) = id.split_once(".support-") {
+            let b = path.bounding_box();
+            panels
+                .entry(panel.to_string())
+                .and_modify(|r| *r = r.union(b))
+                .or_insert(b);
+        }
+    }
+    assert_eq!(panels.len(), 7, "one pole a panel");
+    let top = 198.0 - 560.0 * 0.29;
+    for (panel, pole) in &panels {
+        assert!((pole.y1 - 198.0).abs() < 1e-6, "{panel}: {pole:?}");
+        assert!(pole.y0 > top - 1e-6, "{panel}: {pole:?}");
+        assert!(pole.width() < 12.0 * 0.29 + 1e-6, "{panel}: {pole:?}");
+    }
+    let topped = panels.values().filter(|p| (p.y0 - top).abs() < 1e-6);
+    assert!(topped.count() >= 5, "{panels:?}");
+    // Too large a scale is named, with the one that fits.
+    let e = error("scale = 50\n");
+    assert!(e.contains("scale") && e.contains("at most"), "{e}");
 }
