@@ -56,7 +56,7 @@ use glam::DVec3;
 use kurbo::{Affine, BezPath, Point, Rect};
 
 use crate::error::{Error, Result};
-use crate::family::vine::engine::{Plant, Shape, Supports};
+use crate::family::vine::engine::{Plant, Shape, Supports, VineParams};
 use crate::geom::region::Region;
 use crate::geom::simplify::rdp;
 use crate::motif::{fitted, stroke_points, Context, Stroke};
@@ -118,7 +118,11 @@ pub(super) fn build(spec: &VineSpec, group_id: &str, cx: &mut Context<'_>) -> Re
     let mut rng = cx.stream(&key);
     let mut plants = Vec::with_capacity(roots.len());
     for (i, root) in roots.iter().enumerate() {
-        let params = spec.params(*root);
+        let params = VineParams {
+            // Along a guide, up is along the page's line: nothing hangs.
+            droop: guide.is_none(),
+            ..spec.params(*root)
+        };
         let grown = engine::grow(&params, &supports, &mut rng).map_err(|e| match e {
             // The simulation names its own fields; the table's are these.
             Error::Invalid { at, field, message } => Error::Invalid {

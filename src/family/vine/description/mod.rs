@@ -321,6 +321,7 @@ impl VineSpec {
             cotyledons: self.cotyledons,
             leaf_size: self.leaf_size,
             base: DVec3::from_array(root),
+            droop: true,
             light: DVec3::from_array(self.light),
         }
     }

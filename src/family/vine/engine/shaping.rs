@@ -72,7 +72,9 @@ pub(super) fn shape(
         // The tip's last two internodes: P_{e−d} and P_e move.
         let start = f.saturating_sub(2 * d).max(free_from);
         bend(&mut p, start, f, d, [false, true, true], amplitude, rng);
-        droop(&mut p, free_from, 2.0 * params.internode);
+        if params.droop {
+            droop(&mut p, free_from, 2.0 * params.internode);
+        }
         if let Some((ps, pn)) = stem.parent {
             // Follow the parent's node, fading out before the first twined
             // point (or after one internode).

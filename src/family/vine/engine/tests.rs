@@ -907,6 +907,7 @@ fn no_input_makes_the_growth_hang_or_enter_a_support() {
             cotyledons: rng.below(3) as u32,
             leaf_size: rng.range(0.0, 30.0),
             base: DVec3::ZERO,
+            droop: case % 2 == 0,
             light: DVec3::new(rng.symmetric(1.0), rng.symmetric(1.0), rng.symmetric(1.0)),
         };
         let mut shapes = Vec::new();
