@@ -23,6 +23,8 @@
 //!   (the page inside its margins by default), aspect kept, centred, and
 //!   `draw` picks the parts this table draws; so the same vine in two
 //!   layers (same `id`) lines up exactly, each layer one pen.
+//!   With `scale` the picture keeps that scale instead, centred across
+//!   `fit` and standing on its bottom edge, so a row of panels compares.
 //! * **Model**: the parts drawn also go to the 3D export
 //!   ([`Context::model`]): stem axes and tubes, leaves as the thesis'
 //!   quads, supports as meshes.
@@ -54,7 +56,7 @@ use glam::DVec3;
 use kurbo::{Affine, BezPath, Point, Rect};
 
 use crate::error::{Error, Result};
-use crate::family::vine::engine::{Plant, Shape, Supports};
+use crate::family::vine::engine::{Plant, Shape, Supports, VineParams};
 use crate::geom::region::Region;
 use crate::geom::simplify::rdp;
 use crate::motif::{fitted, stroke_points, Context, Stroke};
@@ -116,7 +118,11 @@ pub(super) fn build(spec: &VineSpec, group_id: &str, cx: &mut Context<'_>) -> Re
     let mut rng = cx.stream(&key);
     let mut plants = Vec::with_capacity(roots.len());
     for (i, root) in roots.iter().enumerate() {
-        let params = spec.params(*root);
+        let params = VineParams {
+            // Along a guide, up is along the page's line: nothing hangs.
+            droop: guide.is_none(),
+            ..spec.params(*root)
+        };
         let grown = engine::grow(&params, &supports, &mut rng).map_err(|e| match e {
             // The simulation names its own fields; the table's are these.
             Error::Invalid { at, field, message } => Error::Invalid {
@@ -167,7 +173,17 @@ pub(super) fn build(spec: &VineSpec, group_id: &str, cx: &mut Context<'_>) -> Re
                 || Rect::from_origin_size(Point::ZERO, cx.page().drawable().size()),
                 |[x0, y0, x1, y1]| Rect::new(x0, y0, x1, y1),
             );
-            let place = fitted(sight.bounds(), frame);
+            let place = match spec.scale {
+                Some(scale) => {
+                    // The ground under the first root: where the panels of a
+                    // row stand.
+                    let root = DVec3::from_array(spec.roots[0]);
+                    let bounds = sight.bounds();
+                    let ground = sight.project(root).map_or(bounds.y1, |p| p.y);
+                    at_scale(bounds, ground, frame, scale, &format!("{group_id}.scale"))?
+                }
+                None => fitted(sight.bounds(), frame),
+            };
             (sight, place)
         }
     };
@@ -223,6 +239,31 @@ pub(super) fn build(spec: &VineSpec, group_id: &str, cx: &mut Context<'_>) -> Re
     };
     cx.model(model::model(group_id, spec, &plant, shapes, &sight));
     Ok(group)
+}
+
+/// The map that draws `drawn` at `scale`, centred across `frame`, the
+/// level `ground` (in `drawn`'s units, y down) on its bottom edge; an
+/// error (naming `field`) when what stands above the ground does not fit,
+/// with the scale that would. What hangs below the ground (a seed leaf)
+/// may reach under the edge.
+fn at_scale(drawn: Rect, ground: f64, frame: Rect, scale: f64, field: &str) -> Result<Affine> {
+    let tall = (ground - drawn.y0).max(0.0);
+    let fits = (frame.width() / drawn.width()).min(frame.height() / tall);
+    if scale > fits * (1.0 + 1e-9) {
+        return Err(Error::invalid(
+            field,
+            format!(
+                "draws the picture {:.1} × {:.1} mm, larger than its box ({:.1} × {:.1} mm): at most {fits:.4}",
+                drawn.width() * scale,
+                tall * scale,
+                frame.width(),
+                frame.height()
+            ),
+        ));
+    }
+    let foot = Point::new(drawn.center().x, ground);
+    let edge = Point::new(frame.center().x, frame.y1);
+    Ok(Affine::translate(edge.to_vec2()) * Affine::scale(scale) * Affine::translate(-foot.to_vec2()))
 }
 
 /// The area the vine covers on the page, as a [mask](Style::mask): with

@@ -143,6 +143,11 @@ impl Sight {
         &self.lines
     }
 
+    /// Where the camera draws the model point `p`, if it can.
+    pub(super) fn project(&self, p: DVec3) -> Option<Point> {
+        self.camera.project(p).map(|(q, _)| q)
+    }
+
     /// The picture's bounds: every line's points as projected, hidden or
     /// not (so that tables drawing different parts of one vine line up).
     pub(super) fn bounds(&self) -> Rect {

@@ -89,6 +89,13 @@ pub struct VineSpec {
     /// kept, centred (default: the page inside its margins).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fit: Option<[f64; 4]>,
+    /// Draws the picture at this scale (page mm per model mm, 0.001–100)
+    /// instead of as large as fits: centred across `fit` (or the page)
+    /// and standing on its bottom edge. The panels of a parameter row
+    /// given one scale compare, the ground on one line; an error names
+    /// the scale that fits when the picture is too large for its box.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
     /// What this table draws (default all): `"stem"`, `"leaves"`,
     /// `"supports"`. Hidden lines are always removed against all of them.
     #[serde(skip_serializing_if = "is_all_parts")]
@@ -270,6 +277,7 @@ impl Default for VineSpec {
             supports: None,
             camera: CameraSpec::default(),
             fit: None,
+            scale: None,
             draw: all_parts(),
             leaf: default_leaf(),
             guide: None,
@@ -313,6 +321,7 @@ impl VineSpec {
             cotyledons: self.cotyledons,
             leaf_size: self.leaf_size,
             base: DVec3::from_array(root),
+            droop: true,
             light: DVec3::from_array(self.light),
         }
     }
@@ -448,6 +457,7 @@ impl Family for VineSpec {
                 ("roots", !is_origin(&self.roots)),
                 ("camera", !self.camera.is_front()),
                 ("fit", self.fit.is_some()),
+                ("scale", self.scale.is_some()),
             ] {
                 if given {
                     return Err(Error::invalid(
@@ -476,6 +486,9 @@ impl Family for VineSpec {
                     "must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0",
                 ));
             }
+        }
+        if let Some(scale) = self.scale {
+            range(&format!("{f}.scale"), scale, 0.001, 100.0)?;
         }
         if self.draw.is_empty() {
             return Err(Error::invalid(

@@ -19,12 +19,15 @@
 //! 1. growth (§3.2): one axis point per interval, the top two internodes
 //!    circumnutating as a straight rod at θp from the vertical; spheres of
 //!    radius r on the rod touch the supports and fix the stem there, which
-//!    winds it round them; an apex that turns a full turn without touching
-//!    stops and the next node up the first stem takes over (a node with
-//!    no room to sprout, every direction touching, stays a bud and keeps
-//!    its leaf);
+//!    winds it round them; an apex whose last two internodes touch
+//!    nothing stops (the thesis' rule) and the next node up the first
+//!    stem takes over, then the nodes of the later stems (a node with no
+//!    room to sprout, every direction touching, stays a bud and keeps its
+//!    leaf); a touching rod circles faster, but not without bound, so the
+//!    growth interval sets how much stem grows per turn on a support too;
 //! 2. shaping (§3.3.1): sharp turns smoothed, the untwined base and the
-//!    free tips bent at random;
+//!    free tips bent at random, and the free tips drooping under their
+//!    weight;
 //! 3. leaves (§3.3.3) at the nodes: pointing away from the stem and from
 //!    what a twined node touches, their faces turned to
 //!    [`VineParams::light`], drooping 30° and rolled at random up to 15°

@@ -76,6 +76,10 @@ pub struct VineParams {
     /// Where the seed sprouts (the origin). It must be at least `radius`
     /// away from every support.
     pub base: DVec3,
+    /// Free tips arch over and hang under their weight (true). A vine
+    /// grown along a guide on the page, where up is along the guide and
+    /// not against gravity, keeps them as grown (false).
+    pub droop: bool,
     /// The direction the light comes from, towards which the leaf blades
     /// turn their faces ((0, 0.5, 1): from the front and above). Any
     /// finite non-zero vector; only its direction matters.
@@ -98,6 +102,7 @@ impl Default for VineParams {
             cotyledons: 1,
             leaf_size: 12.0,
             base: DVec3::ZERO,
+            droop: true,
             light: DVec3::new(0.0, 0.5, 1.0),
         }
     }

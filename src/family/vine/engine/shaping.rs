@@ -1,7 +1,14 @@
 //! Shaping the simulated axis into the drawn one (thesis §3.3.1): sharp
 //! turns smoothed by a cubic spline (eq. 3.2), the untwined base and the
-//! free tips bent into random cubic Béziers (eq. 3.3), and every point
-//! kept out of the supports. The number of points, and so the node
+//! free tips bent into random cubic Béziers (eq. 3.3), the free tips
+//! drooping under their weight, and every point kept out of the supports.
+//!
+//! Decision (droop): the simulation's free tip is a straight rod standing
+//! in the air; a real bindweed tip with nothing to hold arches over and
+//! hangs. Past its last contact the axis bends as a cantilever under its
+//! own weight does: the slope turns fastest at the root, most where the
+//! free part is longest, and a free part of two internodes ends pointing
+//! down and outward. The number of points, and so the node
 //! indices, never change.
 //!
 //! Eq. 3.2 also blends the yaw of the directions N_i linearly across a
@@ -26,6 +33,15 @@ const SHARP_TURN: f64 = FRAC_PI_4;
 /// along the support's normal (more than once only in a concave corner)
 /// before it falls back to its simulated position.
 const PUSHES: usize = 8;
+
+/// How far a free tip of two internodes or more turns down from its
+/// root to its end (radians): 150°, so it hangs outward. Shorter tips
+/// turn in proportion.
+const DROOP: f64 = 150.0 * PI / 180.0;
+
+/// The most a drooping tip points away from straight up (radians): it
+/// hangs, it does not curl back under itself.
+const HANG: f64 = 170.0 * PI / 180.0;
 
 /// The shaped axis P'_i of every stem, in the same order. Parents come
 /// before their branches (a branch grows from the first stem), so a
@@ -56,6 +72,9 @@ pub(super) fn shape(
         // The tip's last two internodes: P_{e−d} and P_e move.
         let start = f.saturating_sub(2 * d).max(free_from);
         bend(&mut p, start, f, d, [false, true, true], amplitude, rng);
+        if params.droop {
+            droop(&mut p, free_from, 2.0 * params.internode);
+        }
         if let Some((ps, pn)) = stem.parent {
             // Follow the parent's node, fading out before the first twined
             // point (or after one internode).
@@ -168,6 +187,44 @@ fn bend(
             + c1 * (3.0 * nb * nb * b)
             + c2 * (3.0 * nb * b * b)
             + c3 * (b * b * b);
+    }
+}
+
+/// Bends the free part `from` … tip down under its weight, each segment
+/// keeping its length: the slope of a uniformly loaded cantilever, turned
+/// about the level axis across the part's lean by DROOP·(length/`full`)
+/// at the end (at most DROOP, and never past HANG from straight up).
+fn droop(p: &mut [DVec3], from: usize, full: f64) {
+    let f = p.len() - 1;
+    if from + 1 >= f {
+        return;
+    }
+    let lengths: Vec<f64> = p[from..].windows(2).map(|w| w[0].distance(w[1])).collect();
+    let total: f64 = lengths.iter().sum();
+    let lean = p[f] - p[from];
+    let Some(root) = (p[from + 1] - p[from]).try_normalize() else {
+        return;
+    };
+    if total <= 0.0 {
+        return;
+    }
+    let level = DVec3::new(lean.x, 0.0, lean.z)
+        .try_normalize()
+        .or_else(|| DVec3::new(root.x, 0.0, root.z).try_normalize())
+        .unwrap_or(DVec3::X);
+    let axis = DVec3::Y.cross(level).normalize();
+    let tilt = root.y.clamp(-1.0, 1.0).acos();
+    let turn = (DROOP * (total / full).min(1.0)).min((HANG - tilt).max(0.0));
+    let directions: Vec<DVec3> = p[from..].windows(2).map(|w| w[1] - w[0]).collect();
+    let mut at = 0.0;
+    let mut q = p[from];
+    for (i, (v, len)) in directions.iter().zip(&lengths).enumerate() {
+        // The slope at the middle of the segment: 1 − (1 − u)³ of the turn.
+        let u = (at + 0.5 * len) / total;
+        let angle = turn * (1.0 - (1.0 - u).powi(3));
+        q += glam::DQuat::from_axis_angle(axis, angle) * *v;
+        p[from + i + 1] = q;
+        at += len;
     }
 }
 
