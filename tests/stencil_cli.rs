@@ -290,3 +290,28 @@ fn bad_stencil_input_is_refused_by_name_and_nothing_is_written() {
         assert!(!dir.path().join("sheet.png").exists(), "{args:?}");
     }
 }
+
+#[test]
+fn the_katagami_template_cut_as_a_stencil_is_one_piece() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let template = Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/katagami.toml");
+    let out = moyo(&dir)
+        .arg("stencil")
+        .arg(&template)
+        .args(["-o", "katagami.dxf"])
+        .assert()
+        .success();
+    let report = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(report.contains("the sheet is one piece"), "{report}");
+    assert!(!report.contains("fall out"), "{report}");
+    // A web of waves and blossoms: hundreds of islands, each held.
+    let counts: Vec<usize> = report
+        .lines()
+        .next()
+        .unwrap()
+        .split(|c: char| !c.is_ascii_digit())
+        .filter_map(|n| n.parse().ok())
+        .collect();
+    assert!(counts[0] > 500 && counts[1] >= counts[0], "{report}");
+    assert!(dir.path().join("katagami.dxf").exists());
+}

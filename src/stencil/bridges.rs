@@ -2,7 +2,7 @@
 //! that would fall out, the long slits that would flap, and the strips of
 //! paper left uncut that hold them.
 //!
-//! The cut-outs come as shapes (see [`super::shapes`]): an outer contour,
+//! The cut-outs come as shapes (the stencil's polygons): an outer contour,
 //! the *wall*, and holes. An *island* is paper enclosed by one cut-out: a
 //! hole of a shape. The paper just outside the wall is its *holder*,
 //! which may be an island itself (rings inside rings), so holding every
