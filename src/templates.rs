@@ -93,6 +93,7 @@ pub const ALL: &[Template] = templates![
     "kimono-vine",
     "kimono-egasumi",
     "kimono-bokashi",
+    "katagami",
 ];
 
 impl Template {

@@ -213,8 +213,9 @@ fn the_cutter_cuts_every_outline_after_what_lies_inside_it() {
     assert!((span / 40.0 - 100.0).abs() < 0.1, "{span}");
 }
 
-/// A disc in a ring in a ring (three islands) and a wave (none), 0.5 mm
-/// pens on a 120 mm square sheet.
+/// A disc in a ring in a ring (three islands), a small ring round a 3.5
+/// mm disc (one more) and a wave (none), 0.5 mm pens on a 120 mm square
+/// sheet.
 const RINGS: &str = r#"<svg xmlns="http://www.w3.org/2000/svg"
     xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape"
     width="120mm" height="120mm" viewBox="0 0 120 120">
@@ -222,6 +223,7 @@ const RINGS: &str = r#"<svg xmlns="http://www.w3.org/2000/svg"
     <circle cx="60" cy="60" r="40"/>
     <circle cx="60" cy="60" r="25"/>
     <circle cx="60" cy="60" r="10"/>
+    <circle cx="10" cy="10" r="2"/>
     <path d="M 10 112 C 30 100 60 120 110 108"/>
   </g>
 </svg>"#;
@@ -235,7 +237,7 @@ fn a_stencil_holds_its_islands_and_says_so() {
         .assert()
         .success();
     let report = String::from_utf8_lossy(&out.get_output().stderr).to_string();
-    assert!(report.contains("3 islands, 3 bridges"), "{report}");
+    assert!(report.contains("4 islands, 4 bridges"), "{report}");
     assert!(report.contains("the sheet is one piece"), "{report}");
     for file in ["cut.svg", "sheet.png", "print.png"] {
         assert!(dir.path().join(file).exists(), "{file}");
@@ -246,8 +248,8 @@ fn a_stencil_holds_its_islands_and_says_so() {
         .assert()
         .success();
     let report = String::from_utf8_lossy(&out.get_output().stderr).to_string();
-    assert!(report.contains("3 islands, "), "{report}");
-    assert!(!report.contains("3 islands, 3 bridges"), "{report}");
+    assert!(report.contains("4 islands, "), "{report}");
+    assert!(!report.contains("4 islands, 4 bridges"), "{report}");
     if let Some(python) = interpreter("MOYO_PYTHON") {
         let r = read_dxf(&python, &dir.path().join("cut.dxf"));
         let lines = polylines(&r);
@@ -269,10 +271,10 @@ fn bad_stencil_input_is_refused_by_name_and_nothing_is_written() {
         (&["in.svg", "--bridge", "-1"][..], "--bridge: "),
         (&["in.svg", "--bridge-every", "-5"][..], "--bridge-every: "),
         (&["in.svg", "--min-feature", "-0.1"][..], "--min-feature: "),
-        // Wider than the disc in the middle and the rings.
+        // As wide as the whole small ring (4.5 mm across) it must cross.
         (
-            &["in.svg", "--bridge", "19.9"][..],
-            "--bridge: a bridge 19.9 mm wide is wider than the island at (",
+            &["in.svg", "--bridge", "5"][..],
+            "--bridge: a bridge 5 mm wide is wider than the gap it must cross at (",
         ),
         (&["empty.svg"][..], "empty.svg: "),
     ] {
@@ -287,4 +289,29 @@ fn bad_stencil_input_is_refused_by_name_and_nothing_is_written() {
         assert!(!dir.path().join("cut.dxf").exists(), "{args:?}");
         assert!(!dir.path().join("sheet.png").exists(), "{args:?}");
     }
+}
+
+#[test]
+fn the_katagami_template_cut_as_a_stencil_is_one_piece() {
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let template = Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/katagami.toml");
+    let out = moyo(&dir)
+        .arg("stencil")
+        .arg(&template)
+        .args(["-o", "katagami.dxf"])
+        .assert()
+        .success();
+    let report = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(report.contains("the sheet is one piece"), "{report}");
+    assert!(!report.contains("fall out"), "{report}");
+    // A web of waves and blossoms: hundreds of islands, each held.
+    let counts: Vec<usize> = report
+        .lines()
+        .next()
+        .unwrap()
+        .split(|c: char| !c.is_ascii_digit())
+        .filter_map(|n| n.parse().ok())
+        .collect();
+    assert!(counts[0] > 500 && counts[1] >= counts[0], "{report}");
+    assert!(dir.path().join("katagami.dxf").exists());
 }

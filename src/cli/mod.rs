@@ -187,6 +187,16 @@ pub(crate) fn check_outputs(inputs: &[Named<'_>], outputs: &[Named<'_>]) -> Resu
     Ok(())
 }
 
+/// The extension of an output's name, lower-cased (empty when it has
+/// none): what names its format.
+pub(crate) fn extension(output: &Path) -> String {
+    output
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
 /// Rejects a bad `--dpi` while parsing, whether or not `--png` is given.
 pub(crate) fn parse_dpi(s: &str) -> Result<f64, String> {
     let dpi: f64 = s.parse().map_err(|e| format!("{e}"))?;

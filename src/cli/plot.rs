@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 
-use super::{as_typed, check_outputs, stdout_error, warn_outside_page, CliError, Named, Typed};
+use super::{
+    as_typed, check_outputs, extension, stdout_error, warn_outside_page, CliError, Named, Typed,
+};
 use moyo::input::{ImportOptions, Imported, PenGrouping};
 use moyo::output::device::{BuiltIn, Device, DeviceSpec, BUILT_IN};
 use moyo::output::dxf::DxfOptions;
@@ -503,21 +505,14 @@ impl PlotArgs {
     /// The format asked for: --format, else the output's extension when
     /// it names one (.gcode, .nc, .ngc, .g; .hpgl, .plt, .hgl, .svg, .dxf).
     fn format(&self) -> Option<OutputFormat> {
-        self.format.or_else(|| {
-            let ext = self
-                .output
-                .extension()
-                .and_then(|e| e.to_str())
-                .unwrap_or("")
-                .to_ascii_lowercase();
-            match ext.as_str() {
+        self.format
+            .or_else(|| match extension(&self.output).as_str() {
                 "gcode" | "nc" | "ngc" | "g" => Some(OutputFormat::Gcode),
                 "hpgl" | "plt" | "hgl" => Some(OutputFormat::Hpgl),
                 "svg" => Some(OutputFormat::Svg),
                 "dxf" => Some(OutputFormat::Dxf),
                 _ => None,
-            }
-        })
+            })
     }
 
     /// Why an output that names no format by its extension is refused

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
-use super::{check_outputs, parse_dpi, CliError, Named};
+use super::{check_outputs, extension, parse_dpi, CliError, Named};
 use moyo::output::dxf::DxfOptions;
 use moyo::output::hpgl::{CutterOptions, HpglOptions};
 use moyo::output::{render_png, to_svg, write_all_atomic, SvgOptions};
@@ -38,6 +38,10 @@ pub(crate) struct StencilArgs {
     /// Corners of the cut sharper than this many degrees are reported.
     #[arg(long, default_value_t = StencilOptions::DEFAULT.min_corner_deg)]
     min_corner_deg: f64,
+    /// Round the paper's sharp tips between cut-outs off, so that a drag
+    /// knife follows them.
+    #[arg(long)]
+    round_corners: bool,
     /// HPGL: cut past the start of closed outlines, mm [default: 1].
     #[arg(long)]
     overcut: Option<f64>,
@@ -63,17 +67,12 @@ impl StencilArgs {
             .with_min_feature(self.min_feature)
             .with_widen(self.widen)
             .with_min_corner_deg(self.min_corner_deg)
+            .with_round_corners(self.round_corners)
     }
 
     /// The output format, by the output's extension.
     fn format(&self) -> Result<PlotFormat, CliError> {
-        let ext = self
-            .output
-            .extension()
-            .and_then(|e| e.to_str())
-            .unwrap_or("")
-            .to_ascii_lowercase();
-        match ext.as_str() {
+        match extension(&self.output).as_str() {
             "svg" => Ok(PlotFormat::Svg(SvgOptions::DEFAULT)),
             "dxf" => Ok(PlotFormat::Dxf(DxfOptions::DEFAULT)),
             "hpgl" | "plt" | "hgl" => {

@@ -4,33 +4,38 @@
 //! Strokes are flattened within the tolerance and turned into outlines by
 //! i_overlay's stroker (round caps and joins, what a pen leaves), one call
 //! per pen width and per kind (open or closed), each call unioning its own
-//! outlines in one integer sweep; the few results are unioned once more.
+//! outlines in one integer sweep; the few results are unioned and cut to
+//! the sheet in one more.
 //! Per-stroke regions swept one by one would cost a sweep each; kurbo's
 //! stroker keeps curves but its outlines of strokes running opposite ways
 //! cancel under the non-zero rule where they overlap.
 
 use std::collections::BTreeMap;
 
+use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::mesh::float::stroke::offset::StrokeOffset;
 use i_overlay::mesh::float::style::{LineCap, LineJoin, StrokeStyle};
-use kurbo::{PathEl, Point};
+use kurbo::{PathEl, Point, Rect};
 
+use super::shapes::{self, arc_step, Shape};
 use crate::error::{Error, Result};
-use crate::geom::region::{path_from_shapes, Region};
+use crate::geom::region::Region;
 use crate::geom::subpath::subpaths;
 use crate::scene::{Pen, Scene};
-
-/// Smallest angular step i_overlay takes for round caps and joins.
-const MIN_ARC_STEP: f64 = 0.01 * std::f64::consts::PI;
 
 /// The union of every drawn stroke of the plotted layers of `scene`, each
 /// as wide as its pen or `min_width` mm, whichever is wider, in page
 /// coordinates (origin at the sheet's top-left corner), within
-/// `tolerance` mm.
+/// `tolerance` mm, cut to the sheet.
 ///
 /// # Errors
 /// [`Error::Invalid`] (field `input`) when the drawing has no stroke.
 pub fn cutouts(scene: &Scene, min_width: f64, tolerance: f64) -> Result<Region> {
+    cutout_shapes(scene, min_width, tolerance).map(|s| shapes::to_region(&s))
+}
+
+/// [`cutouts`] as shapes.
+pub(crate) fn cutout_shapes(scene: &Scene, min_width: f64, tolerance: f64) -> Result<Vec<Shape>> {
     // (width in µm, closed) → polylines; a BTreeMap keeps the order fixed.
     let mut groups: BTreeMap<(u64, bool), Vec<Vec<[f64; 2]>>> = BTreeMap::new();
     let page = scene.page_transform();
@@ -63,20 +68,24 @@ pub fn cutouts(scene: &Scene, min_width: f64, tolerance: f64) -> Result<Region> 
             "the drawing has no stroke to cut (a stencil is cut from line art)",
         ));
     }
-    let parts: Vec<Region> = groups
+    let strokes: Vec<Shape> = groups
         .into_iter()
-        .map(|((microns, closed), lines)| {
+        .flat_map(|((microns, closed), lines)| {
             let width = microns as f64 / 1000.0;
-            let step = (8.0 * tolerance / (width / 2.0)).sqrt().max(MIN_ARC_STEP);
+            let step = arc_step(width / 2.0, tolerance);
             let style = StrokeStyle::new(width)
                 .line_join(LineJoin::Round(step))
                 .start_cap(LineCap::Round(step))
                 .end_cap(LineCap::Round(step));
-            let shapes = lines.stroke(style, closed);
-            Region::from_normalised(path_from_shapes(&shapes, tolerance))
+            lines.stroke(style, closed)
         })
         .collect();
-    Ok(Region::union_all(&parts))
+    let sheet = Rect::new(0.0, 0.0, scene.page.width, scene.page.height);
+    Ok(shapes::overlay(
+        &strokes,
+        &[shapes::rect(sheet)],
+        OverlayRule::Intersect,
+    ))
 }
 
 /// The points of one subpath flattened within `tolerance`, without

@@ -8,13 +8,20 @@
 //!    is set), all unioned; the sheet (the page) minus them is the paper;
 //! 2. [`bridges`]: islands narrower than the smallest feature are cut away
 //!    whole (specks the blade cannot leave); every other *island* — a
-//!    piece of paper that would fall out — gets bridges (*tsuri*) across the narrowest gap to the paper around
-//!    it, more along long outlines; the bridges are taken out of the
-//!    cut-outs;
-//! 3. the sheet is checked: still one piece ([`Report::loose`] lists any
+//!    piece of paper that would fall out — gets bridges (*tsuri*) across
+//!    the narrowest gap to the paper around it, more along long outlines,
+//!    and long slits get one every [`StencilOptions::bridge_every`] mm;
+//!    the bridges are taken out of the cut-outs;
+//! 3. with [`StencilOptions::round_corners`], the paper's sharp tips
+//!    between cut-outs are rounded off ([`blade`]);
+//! 4. the sheet is checked: still one piece ([`Report::loose`] lists any
 //!    part that would still fall out, never silently), and [`blade`]
 //!    limits — paper and cut-outs narrower than the blade can leave,
 //!    corners sharper than it can follow — are listed in the [`Report`].
+//!
+//! The booleans work on polygons in the boolean library's own form
+//! (`shapes`), one integer sweep each: a full A3 kimono design becomes a
+//! stencil in about a second (BENCHMARKS.md, section 14).
 //!
 //! The result's [`Stencil::cut_scene`] is what the knife cuts (every
 //! boundary of the cut-outs, closed), to be written like any drawing, in
@@ -29,9 +36,11 @@
 pub mod blade;
 pub mod bridges;
 pub mod cutouts;
+mod shapes;
 
 use std::fmt;
 
+use i_overlay::core::overlay_rule::OverlayRule;
 use kurbo::{BezPath, Point, Rect};
 
 use crate::error::{Error, Result};
@@ -49,8 +58,9 @@ pub use bridges::{Bridge, Island};
 pub struct StencilOptions {
     /// Width of a bridge, mm. Default 0.8.
     pub bridge: f64,
-    /// Along an island's outline, a bridge every this many mm (0: only
-    /// the one across the narrowest gap). Default 40.
+    /// Along an island's outline and along a long slit, a bridge every
+    /// this many mm (0: only the one across an island's narrowest gap).
+    /// Default 40.
     pub bridge_every: f64,
     /// The narrowest paper or cut-out the blade can leave, mm. Default 0.5.
     pub min_feature: f64,
@@ -60,6 +70,10 @@ pub struct StencilOptions {
     /// Corners of the cut sharper than this (degrees) are reported.
     /// Default 30.
     pub min_corner_deg: f64,
+    /// Round the paper's sharp tips between cut-outs off (to the blade's
+    /// reach, [`blade::CORNER_REACH`], or less than half a bridge), so
+    /// that a drag knife follows them. Default off (they are reported).
+    pub round_corners: bool,
     /// Flattening tolerance, mm. Default 0.02.
     pub tolerance: f64,
 }
@@ -73,6 +87,7 @@ impl StencilOptions {
         min_feature: 0.5,
         widen: false,
         min_corner_deg: 30.0,
+        round_corners: false,
         tolerance: 0.02,
     };
 
@@ -97,6 +112,12 @@ impl StencilOptions {
     /// These options with [`StencilOptions::widen`] set.
     pub const fn with_widen(mut self, widen: bool) -> StencilOptions {
         self.widen = widen;
+        self
+    }
+
+    /// These options with [`StencilOptions::round_corners`] set.
+    pub const fn with_round_corners(mut self, round: bool) -> StencilOptions {
+        self.round_corners = round;
         self
     }
 
@@ -170,14 +191,19 @@ impl fmt::Display for Report {
             }
             writeln!(f)
         };
+        let across_slits = self.bridges.iter().filter(|b| b.island.is_none()).count();
         writeln!(
             f,
-            "{} islands, {} bridges",
+            "{} islands, {} bridges ({across_slits} across long slits)",
             self.islands.len(),
             self.bridges.len()
         )?;
-        for (k, island) in self.islands.iter().enumerate() {
-            let held = self.bridges.iter().filter(|b| b.island == k).count();
+        // The largest islands first; a kimono has thousands.
+        let mut order: Vec<usize> = (0..self.islands.len()).collect();
+        order.sort_by(|&a, &b| self.islands[b].across.total_cmp(&self.islands[a].across));
+        for &k in order.iter().take(LISTED) {
+            let island = &self.islands[k];
+            let held = self.bridges.iter().filter(|b| b.island == Some(k)).count();
             writeln!(
                 f,
                 "  island {} at ({:.1}, {:.1}) mm, {:.2} mm across: {held} bridges",
@@ -186,6 +212,9 @@ impl fmt::Display for Report {
                 island.centre.y,
                 island.across
             )?;
+        }
+        if self.islands.len() > LISTED {
+            writeln!(f, "  … and {} smaller islands", self.islands.len() - LISTED)?;
         }
         places(
             f,
@@ -207,6 +236,9 @@ impl fmt::Display for Report {
     }
 }
 
+/// How many islands the report lists one by one.
+const LISTED: usize = 10;
+
 /// A stencil: the paper that stays and what is cut out of it.
 #[derive(Debug, Clone)]
 pub struct Stencil {
@@ -224,8 +256,8 @@ pub struct Stencil {
 ///
 /// # Errors
 /// [`Error::Invalid`] for options out of range (naming the option), a
-/// drawing without strokes (`input`), or a bridge wider than an island it
-/// must hold (`bridge`, naming the place).
+/// drawing without strokes (`input`), or a bridge as wide as a whole
+/// cut-out it must cross (`bridge`, naming the place).
 pub fn make(scene: &Scene, options: &StencilOptions) -> Result<Stencil> {
     options.validate()?;
     let tolerance = options.tolerance;
@@ -238,43 +270,58 @@ pub fn make(scene: &Scene, options: &StencilOptions) -> Result<Stencil> {
         margins: Margins::uniform(0.0),
         ..scene.page
     };
-    let paper = Region::from_rect(Rect::new(0.0, 0.0, page.width, page.height))?;
-    let mut cut = cutouts::cutouts(scene, min_width, tolerance)?;
-    if !paper.bounds().contains_rect(cut.bounds()) {
-        cut = cut.intersection(&paper);
+    let paper = vec![shapes::rect(Rect::new(0.0, 0.0, page.width, page.height))];
+    let cut = cutouts::cutout_shapes(scene, min_width, tolerance)?;
+    let found = bridges::bridge(
+        cut,
+        options.bridge,
+        options.bridge_every,
+        options.min_feature,
+        tolerance,
+    )?;
+    let mut holes = found.holes;
+    if options.round_corners {
+        // Less than half a bridge, so that every bridge stays.
+        let radius = blade::CORNER_REACH.min(0.45 * options.bridge);
+        holes = blade::rounded(&holes, radius, tolerance);
     }
-    let (cut, specks) = bridges::cut_specks(&cut, options.min_feature, tolerance);
-    let (islands, bridges) =
-        bridges::bridge(&cut, options.bridge, options.bridge_every, tolerance)?;
-    let strips = bridges
-        .iter()
-        .map(Bridge::region)
-        .collect::<Result<Vec<_>>>()?;
-    let holes = cut.difference_all(&strips);
-    let sheet = paper.difference(&holes);
-    let mut parts = sheet.components();
-    parts.sort_by(|a, b| b.area().total_cmp(&a.area()));
-    let loose = parts
+    let mut sheet = shapes::overlay(&paper, &holes, OverlayRule::Difference);
+    sheet.sort_by(|a, b| shapes::shape_area(b).total_cmp(&shapes::shape_area(a)));
+    let loose = sheet
         .iter()
         .skip(1)
-        .map(|p| {
-            crate::geom::polylabel::pole_of_inaccessibility(p, tolerance)
-                .map_or(p.bounds().center(), |(c, _)| c)
+        .map(|s| {
+            let part = shapes::to_region(std::slice::from_ref(s));
+            crate::geom::polylabel::pole_of_inaccessibility(&part, tolerance)
+                .map_or(part.bounds().center(), |(c, _)| c)
         })
         .collect();
+    // The blade's checks of paper and of cut-outs are independent and
+    // cost most of the time: one on a thread of its own.
+    let (narrow_paper, (narrow_cuts, sharp_corners)) = std::thread::scope(|scope| {
+        let paper = scope.spawn(|| blade::narrow_places(&sheet, options.min_feature, tolerance));
+        let cuts = (
+            blade::narrow_places(&holes, options.min_feature, tolerance),
+            blade::sharp_corners(&holes, options.min_corner_deg),
+        );
+        let paper = paper
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e));
+        (paper, cuts)
+    });
     let report = Report {
-        islands,
-        bridges,
-        specks,
+        islands: found.islands,
+        bridges: found.bridges,
+        specks: found.specks,
         loose,
-        narrow_paper: blade::narrow_places(&sheet, options.min_feature, tolerance)?,
-        narrow_cuts: blade::narrow_places(&holes, options.min_feature, tolerance)?,
-        sharp_corners: blade::sharp_corners(&holes, options.min_corner_deg, tolerance),
+        narrow_paper,
+        narrow_cuts,
+        sharp_corners,
     };
     Ok(Stencil {
         page,
-        sheet,
-        holes,
+        sheet: shapes::to_region(&sheet),
+        holes: shapes::to_region(&holes),
         report,
     })
 }
@@ -429,14 +476,70 @@ mod tests {
     }
 
     #[test]
-    fn a_design_with_no_islands_gets_no_bridges() {
+    fn a_design_with_no_islands_and_no_long_slits_gets_no_bridges() {
         let mut wave = BezPath::new();
         wave.move_to((10.0, 50.0));
-        wave.curve_to((30.0, 20.0), (60.0, 80.0), (80.0, 50.0));
+        wave.curve_to((20.0, 40.0), (30.0, 60.0), (40.0, 50.0));
         let s = make(&drawing(vec![wave]), &StencilOptions::DEFAULT).unwrap();
         assert!(s.report.islands.is_empty());
-        assert!(s.report.bridges.is_empty());
+        assert!(s.report.bridges.is_empty(), "{}", s.report);
         assert_eq!(s.cut_scene().path_count(), 1);
+    }
+
+    #[test]
+    fn a_long_slit_gets_a_bridge_every_spacing() {
+        // About 80 mm of slit, no island.
+        let mut wave = BezPath::new();
+        wave.move_to((10.0, 50.0));
+        wave.curve_to((30.0, 20.0), (60.0, 80.0), (85.0, 50.0));
+        let options = StencilOptions::DEFAULT.with_bridge_every(20.0);
+        let s = make(&drawing(vec![wave.clone()]), &options).unwrap();
+        assert!(s.report.islands.is_empty());
+        let n = s.report.bridges.len();
+        assert!((3..=5).contains(&n), "{}", s.report);
+        // Each crosses the 0.3 mm cut, and the cut falls apart in pieces
+        // between them.
+        for b in &s.report.bridges {
+            assert!(b.island.is_none() && (b.span() - 0.3).abs() < 0.05, "{b:?}");
+        }
+        assert_eq!(s.holes.components().len(), n + 1);
+        assert_eq!(s.sheet.components().len(), 1);
+        // Spaced out: no two nearer than ¾ of the spacing.
+        for (i, a) in s.report.bridges.iter().enumerate() {
+            for b in &s.report.bridges[i + 1..] {
+                assert!(a.from.distance(b.from) > 14.9, "{a:?} {b:?}");
+            }
+        }
+        // A longer spacing, fewer bridges; none when spacing is off.
+        let fewer = make(
+            &drawing(vec![wave.clone()]),
+            &options.with_bridge_every(40.0),
+        )
+        .unwrap();
+        assert!(fewer.report.bridges.len() < n, "{}", fewer.report);
+        let none = make(&drawing(vec![wave]), &options.with_bridge_every(0.0)).unwrap();
+        assert!(none.report.bridges.is_empty());
+    }
+
+    #[test]
+    fn sharp_tips_of_paper_are_reported_and_rounded_on_request() {
+        // Two strokes from one point, 15° apart.
+        let stroke = |deg: f64| {
+            let mut p = BezPath::new();
+            p.move_to((10.0, 50.0));
+            p.line_to(Point::new(10.0, 50.0) + kurbo::Vec2::from_angle(deg.to_radians()) * 30.0);
+            p
+        };
+        let options = StencilOptions::DEFAULT.with_widen(true);
+        let v = drawing(vec![stroke(0.0), stroke(15.0)]);
+        let sharp = make(&v, &options).unwrap();
+        assert!(!sharp.report.sharp_corners.is_empty(), "{}", sharp.report);
+        let round = make(&v, &options.with_round_corners(true)).unwrap();
+        assert!(round.report.sharp_corners.is_empty(), "{}", round.report);
+        // The cut grew into the tip only: a little more cut, the sheet whole.
+        let more = round.holes.area() - sharp.holes.area();
+        assert!(more > 0.0 && more < 1.0, "{more}");
+        assert_eq!(round.sheet.components().len(), 1);
     }
 
     #[test]
@@ -444,7 +547,10 @@ mod tests {
         let mut line = BezPath::new();
         line.move_to((10.0, 50.0));
         line.line_to((80.0, 50.0));
-        let options = StencilOptions::DEFAULT.with_min_feature(0.5);
+        // No bridges along it, which would cut it in pieces.
+        let options = StencilOptions::DEFAULT
+            .with_min_feature(0.5)
+            .with_bridge_every(0.0);
         let s = make(&drawing(vec![line.clone()]), &options).unwrap();
         assert_eq!(s.report.narrow_cuts.len(), 1, "{}", s.report);
         let s = make(&drawing(vec![line]), &options.with_widen(true)).unwrap();
