@@ -394,7 +394,7 @@ fn bad_devices_are_refused_and_nothing_is_written() {
             "the output is G-code, but the device is an HPGL machine",
         ),
         (&["--device", "drag-knife", "--format", "svg"], "--device: writes G-code or HPGL"),
-        (&["--refill", "0"], "gcode.runs.refill_mm: must be at least 0.1 mm"),
+        (&["--refill", "0"], "--refill: must be at least 0.1 mm"),
     ];
     for (args, message) in cases {
         let out = moyo(&dir)
