@@ -291,6 +291,39 @@ fn bad_stencil_input_is_refused_by_name_and_nothing_is_written() {
     }
 }
 
+/// Options that the chosen cut would not use are refused, saying why;
+/// nothing is written.
+#[test]
+fn options_the_cut_would_ignore_are_refused_with_why() {
+    let dir = with(RINGS);
+    for (output, args, expected) in [
+        (
+            "cut.svg",
+            &["--overcut", "2"][..],
+            "--overcut: an HPGL cutter option, but the cut is written as SVG",
+        ),
+        (
+            "cut.dxf",
+            &["--knife-offset", "0.3"],
+            "--knife-offset: an HPGL cutter option, but the cut is written as DXF",
+        ),
+        (
+            "cut.hpgl",
+            &["--dpi", "300"],
+            "--dpi: the resolution of --png and --print-png",
+        ),
+    ] {
+        let out = moyo(&dir)
+            .args(["stencil", "in.svg", "-o", output])
+            .args(args)
+            .assert()
+            .failure();
+        let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+        assert!(err.contains(expected), "{args:?}: {err}");
+        assert!(!dir.path().join(output).exists(), "{args:?}");
+    }
+}
+
 #[test]
 fn the_katagami_template_cut_as_a_stencil_is_one_piece() {
     let dir = tempfile::tempdir().expect("temporary directory");

@@ -54,9 +54,9 @@ pub(crate) struct StencilArgs {
     /// Also write a PNG of the print: what ink passes through.
     #[arg(long, value_name = "PNG")]
     print_png: Option<PathBuf>,
-    /// Resolution of the PNGs (1–2400).
-    #[arg(long, default_value_t = 150.0, value_parser = parse_dpi)]
-    dpi: f64,
+    /// Resolution of the PNGs (1–2400) [default: 150].
+    #[arg(long, value_parser = parse_dpi)]
+    dpi: Option<f64>,
 }
 
 impl StencilArgs {
@@ -70,9 +70,32 @@ impl StencilArgs {
             .with_round_corners(self.round_corners)
     }
 
-    /// The output format, by the output's extension.
+    /// The output format, by the output's extension. The options of
+    /// another output than the one chosen are refused, saying why: they
+    /// would change nothing.
     fn format(&self) -> Result<PlotFormat, CliError> {
-        match extension(&self.output).as_str() {
+        let ext = extension(&self.output);
+        let knife = [
+            ("--overcut", self.overcut.is_some()),
+            ("--knife-offset", self.knife_offset.is_some()),
+        ];
+        if let Some((option, _)) = knife.iter().find(|(_, given)| *given) {
+            if matches!(ext.as_str(), "svg" | "dxf") {
+                return Err(CliError::Message(format!(
+                    "{option}: an HPGL cutter option, but the cut is written as {}, \
+                     which it would not change; leave it out, or name the cut .hpgl",
+                    ext.to_ascii_uppercase()
+                )));
+            }
+        }
+        if self.dpi.is_some() && self.png.is_none() && self.print_png.is_none() {
+            return Err(CliError::Message(
+                "--dpi: the resolution of --png and --print-png, and neither is asked for; \
+                 leave it out, or give one"
+                    .to_string(),
+            ));
+        }
+        match ext.as_str() {
             "svg" => Ok(PlotFormat::Svg(SvgOptions::DEFAULT)),
             "dxf" => Ok(PlotFormat::Dxf(DxfOptions::DEFAULT)),
             "hpgl" | "plt" | "hgl" => {
@@ -92,6 +115,9 @@ impl StencilArgs {
         }
     }
 }
+
+/// `--dpi` unless given.
+const DEFAULT_DPI: f64 = 150.0;
 
 /// The drawing in `path`: an SVG as it is, a scene description rendered.
 fn read_drawing(path: &Path) -> Result<moyo::Scene, CliError> {
@@ -144,7 +170,12 @@ pub(crate) fn stencil(args: &StencilArgs) -> Result<(), CliError> {
     };
     let cut = project::plot_scene(made.cut_scene(), &PlotJob::new(format).with_stages(stages))?;
     // Everything is computed before anything is written.
-    let png = |scene: moyo::Scene| render_png(&to_svg(&scene, &SvgOptions::PREVIEW), args.dpi);
+    let png = |scene: moyo::Scene| {
+        render_png(
+            &to_svg(&scene, &SvgOptions::PREVIEW),
+            args.dpi.unwrap_or(DEFAULT_DPI),
+        )
+    };
     let sheet_png = args
         .png
         .as_ref()
