@@ -245,6 +245,29 @@ fn closed_by_server(stream: &mut TcpStream) -> bool {
     }
 }
 
+/// The page's procedure picker offers every procedure a click may give:
+/// the paper's twenty and each named tangle, in the order of their ids.
+#[test]
+fn the_procedure_picker_offers_the_named_tangles_too() {
+    let (studio, _dir) = studio(SCENE);
+    let page = get(studio.addr(), "/").text();
+    let list = page
+        .split("const PROCEDURES = [")
+        .nth(1)
+        .and_then(|rest| rest.split("];").next())
+        .expect("the page lists the procedures");
+    let names: Vec<String> = list
+        .split(',')
+        .map(|n| n.trim().trim_matches('"').to_lowercase())
+        .collect();
+    assert_eq!(names.len(), 20 + moyo::spec::TANGLES.len(), "{names:?}");
+    for (k, tangle) in moyo::spec::TANGLES.iter().enumerate() {
+        let shown = names[20 + k].replace(' ', "-").replace('\'', "");
+        assert_eq!(&shown, tangle, "procedure {}", 20 + k);
+    }
+    studio.stop();
+}
+
 #[test]
 fn the_description_goes_in_and_the_svg_comes_out() {
     let (studio, _dir) = studio(SCENE);

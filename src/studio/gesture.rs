@@ -212,7 +212,7 @@ struct Fill {
     target: String,
     /// The click, scene mm.
     at: [f64; 2],
-    /// The procedure (0–19).
+    /// The procedure: 0–19 the paper's, 20–31 the named tangles.
     procedure: u32,
 }
 
