@@ -161,15 +161,7 @@ fn knightsbridge_is_a_checkerboard() {
         if !inner.contains(m.path.bounding_box().center()) {
             continue;
         }
-        let corners: Vec<Point> = m
-            .path
-            .elements()
-            .iter()
-            .filter_map(|e| match e {
-                PathEl::MoveTo(p) | PathEl::LineTo(p) => Some(*p),
-                _ => None,
-            })
-            .collect();
+        let corners = corners(&m.path);
         assert_eq!(corners.len(), 4);
         let centre = corners[0].midpoint(corners[2]);
         checked += 1;
@@ -182,6 +174,17 @@ fn knightsbridge_is_a_checkerboard() {
         }
     }
     assert!(checked >= 10, "{checked}");
+}
+
+/// The points a polyline mark moves and draws to, in order.
+fn corners(path: &kurbo::BezPath) -> Vec<Point> {
+    path.elements()
+        .iter()
+        .filter_map(|e| match e {
+            PathEl::MoveTo(p) | PathEl::LineTo(p) => Some(*p),
+            _ => None,
+        })
+        .collect()
 }
 
 /// Centre and radius of a circle mark.
@@ -217,15 +220,7 @@ fn printemps_is_spirals_in_their_circles() {
             continue;
         }
         let (centre, r) = circle_of(circle);
-        let points: Vec<Point> = spiral
-            .path
-            .elements()
-            .iter()
-            .filter_map(|e| match e {
-                PathEl::MoveTo(p) | PathEl::LineTo(p) => Some(*p),
-                _ => None,
-            })
-            .collect();
+        let points = corners(&spiral.path);
         // From the centre outwards, turning all the way, ending on the
         // circle.
         if points[0].distance(centre) > 1e-6 {
