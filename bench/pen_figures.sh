@@ -15,9 +15,11 @@
 # each), pen-up travel (m, in file order from the sheet's top-left corner,
 # each pen from there), estimated plot time (h:mm; 25 mm/s down, 75 mm/s up,
 # 0.3 s a lift), pen-up travel against that of the --merge --sort result
-# (× : how much travel plot would save), doubled line work (% of pen-down),
-# debris (% of polylines: shorter than the pen is wide and within a pen width
-# of other line work) and the densest 1 mm cell as multiples of solid ink
+# (× : how much travel plot would save), line drawn twice (% of pen-down:
+# lines running together for two pen widths or more), ink shared where
+# lines touch at a shallow angle (% of pen-down, forks and corners
+# included), debris (% of polylines: shorter than the pen is wide and
+# within a pen width of other line work) and the densest 1 mm cell as multiples of solid ink
 # (line length × pen width). See pen_metrics.py for the exact definitions.
 # SVGs and per-template JSON stay in DIR = $out/pen (target/bench/pen); the
 # table goes to $out/pen_figures.md.
@@ -44,11 +46,11 @@ fi
 
 started=$(date +%s.%N)
 {
-  echo "| template | paths | pen-up m | plot h:mm | pen-up × sorted | doubled % | debris % | densest × solid |"
-  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+  echo "| template | paths | pen-up m | plot h:mm | pen-up × sorted | doubled % | touching % | debris % | densest × solid |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
   for t in "${templates[@]}"; do
     if ! "$moyo" render -t "$t" -o "$dir/$t.svg" > /dev/null 2> "$work/stderr"; then
-      echo "| $t | render failed: $(head -c 200 "$work/stderr" | tr '\n|' '  ') |||||||"
+      echo "| $t | render failed: $(head -c 200 "$work/stderr" | tr '\n|' '  ') ||||||||"
       continue
     fi
     "$py" bench/pen_metrics.py --json "$dir/$t.svg" > "$dir/$t.json"
@@ -66,7 +68,7 @@ s = int(round(m["plot_time_s"] / 60))
 ratio = ("plot failed" if sorted_up is None else
          f"{m['pen_up_mm'] / sorted_up:.2f}" if sorted_up > 0 else "–")
 print(f"| {name} | {m['paths']} | {m['pen_up_mm'] / 1000:.1f} | {s // 60}:{s % 60:02} | {ratio} "
-      f"| {m['doubled_pct']:.1f} | {m['debris_pct']:.1f} | {m['densest_solid']:.1f} |")
+      f"| {m['doubled_pct']:.1f} | {m['touching_pct']:.1f} | {m['debris_pct']:.1f} | {m['densest_solid']:.1f} |")
 EOF
   done
 } | tee "$out/pen_figures.md"

@@ -18,11 +18,13 @@ use kurbo::{ParamCurve, PathSeg, Point, Vec2};
 use rustc_hash::FxHashMap;
 
 /// Two pieces run the same way when the cosine of the angle between them
-/// (either direction) is at least this: 20°. Chords of two copies of one
-/// curve cut at different places differ by a few degrees; lines that cross
-/// at a shallow angle share ink only near the crossing, over a length the
+/// (either direction) is at least this: 20° and a hundredth, so that a
+/// fork of exactly 20° (ABOP's plants branch at that angle) counts however
+/// its coordinates round. Chords of two copies of one curve cut at
+/// different places differ by a few degrees; lines that cross at a
+/// shallow angle share ink only near the crossing, over a length the
 /// stages weigh ([`super::dedupe`]).
-pub(crate) const SAME_WAY_COS: f64 = 0.94;
+pub(crate) const SAME_WAY_COS: f64 = 0.9396;
 
 /// A straight piece of a subpath.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -402,6 +404,19 @@ mod tests {
             covered(p(0.0, 0.0), p(10.0, 0.0), p(20.0, 0.05), p(4.0, 0.05), 0.1),
             got
         );
+    }
+
+    #[test]
+    fn a_fork_of_twenty_degrees_shares_its_start_and_a_wider_one_does_not() {
+        // ABOP's plants branch at 20°: the branch's first tenths of a
+        // millimetre lie on its parent, within a quarter of a 0.3 mm pen.
+        let branch = |deg: f64| {
+            let d = Vec2::from_angle(deg.to_radians()) * 5.0;
+            covered(p(0.0, 0.0), d.to_point(), p(-5.0, 0.0), p(10.0, 0.0), 0.075)
+        };
+        let (lo, hi) = branch(20.0).expect("a 20° fork shares its start");
+        assert!(lo.abs() < 1e-9 && (hi - 0.075 / 20f64.to_radians().sin()).abs() < 1e-6);
+        assert!(branch(20.1).is_none());
     }
 
     #[test]

@@ -51,6 +51,7 @@ use crate::geom::clip::StrokeClipper;
 use crate::geom::offset::closing;
 use crate::geom::region::{FillRule, Region};
 use crate::geom::PathWalker;
+use crate::geom::voronoi::distinct;
 use crate::geom::TOLERANCE;
 use crate::motif::bokashi::shade;
 use crate::motif::flora::Drawing;
@@ -498,6 +499,7 @@ fn stamp_sites(bg: &BackgroundSpec, group_id: &str, cx: &mut Context<'_>) -> Res
         }
         cx.advance(1);
     }
-    sites.dedup();
-    Ok(sites)
+    // Trees grown up and down from one root share it, and limbs of equal
+    // length can meet again: one stamp a place, or its tile is drawn twice.
+    Ok(distinct(&sites))
 }

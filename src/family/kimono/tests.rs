@@ -517,10 +517,15 @@ fn a_rest_after_the_last_tree_is_refused() {
 /// The paths of the background layer of a one-layer scene (A4, the
 /// default region lines) whose background tiles `motifs`.
 fn background_paths(motifs: &str) -> Vec<(String, kurbo::BezPath)> {
+    background_paths_with(&format!("pattern = 2\nmotifs = {motifs}\nwidth = 10\n"))
+}
+
+/// The paths of the background layer of a one-layer scene (A4, the
+/// default region lines) whose background table ends in `pattern`.
+fn background_paths_with(pattern: &str) -> Vec<(String, kurbo::BezPath)> {
     let table = format!(
         "composite = 1\ncount = 3\ncentre = [[20, 150], [190, 140]]\n\
-         params = {{ generations = 3, trunk = 12 }}\nstamp_width = 14\n\
-         pattern = 2\nmotifs = {motifs}\nwidth = 10\n"
+         params = {{ generations = 3, trunk = 12 }}\nstamp_width = 14\n{pattern}"
     );
     let text = format!(
         "version = 1\nseed = 9\n[[layers]]\nname = \"back\"\n[layers.background]\n{table}"
@@ -567,6 +572,30 @@ fn a_single_ground_tile_is_drawn_as_its_seamless_ground() {
     // Two motifs alternate as tiles, as before.
     let paths = background_paths("[\"seigaiha\", \"kikko\"]");
     assert!(paths.iter().any(|(id, _)| id.contains(".tile-")));
+}
+
+#[test]
+fn every_stamp_carries_its_own_tile_once() {
+    // The hidden trees grow up and down from one root: before the stamps
+    // were made distinct, the root's blossom was drawn twice, exactly on
+    // itself (kimono-3's band was a fifth drawn twice before the pen stage).
+    use kurbo::Shape;
+    let paths = background_paths_with("pattern = 5\nmotifs = [\"ume\"]\n");
+    let tiles: Vec<&kurbo::BezPath> = paths
+        .iter()
+        .filter(|(id, _)| id.contains(".tile-"))
+        .map(|(_, p)| p)
+        .collect();
+    assert!(tiles.len() > 5, "{} tiles", tiles.len());
+    for (i, a) in tiles.iter().enumerate() {
+        let centre = a.bounding_box().center();
+        for b in &tiles[..i] {
+            assert!(
+                b.bounding_box().center().distance(centre) > 1e-3,
+                "two blossoms at {centre:?}"
+            );
+        }
+    }
 }
 
 // ------------------------------------------- the flow and the main tree
