@@ -28,7 +28,8 @@
 //!    chequerboard (one motif repeats) — a single seigaiha, kikkō or
 //!    shippō tile is drawn as the seamless ground it is cut from
 //!    (`motif::ground`): no frame around each tile, no seam, every line
-//!    once and as long as it runs;
+//!    once and as long as it runs; alternating with other motifs, a
+//!    seigaiha tile is drawn without the square its waves fill;
 //! 3. as 2 with `spacing` between tiles, every other column mirrored left
 //!    to right;
 //! 4. motifs at random places, sizes (0.6–1.2×) and angles, about one per
@@ -186,7 +187,8 @@ pub(crate) fn background(
             })?;
             for row in 0..rows {
                 for col in 0..cols {
-                    let d = &motifs[(row + col) % motifs.len()];
+                    let k = (row + col) % motifs.len();
+                    let d = &motifs[k];
                     let centre = Point::new(
                         grid_start(bounds.x0, w + gap) + (col as f64 + 0.5) * (w + gap),
                         grid_start(bounds.y0, h + gap) + (row as f64 + 0.5) * (h + gap),
@@ -195,7 +197,7 @@ pub(crate) fn background(
                     let m = Affine::translate(centre.to_vec2())
                         * Affine::scale_non_uniform(flip * w, h)
                         * Affine::translate(-d.outline.bounding_box().center().to_vec2());
-                    tiles.push(d, m)?;
+                    tiles.push_in_grid(d, m, kind_of(&bg.motifs[k]))?;
                 }
             }
         }
@@ -265,10 +267,10 @@ fn seamless(bg: &BackgroundSpec) -> Option<(Ground, f64, u32, f64)> {
     let [motif] = bg.motifs.as_slice() else {
         return None;
     };
-    let (kind, petals) = match motif {
-        MotifRef::Name(kind) => (*kind, None),
-        MotifRef::Built(b) => (b.kind, b.petals),
-        MotifRef::File(_) => return None,
+    let kind = kind_of(motif)?;
+    let petals = match motif {
+        MotifRef::Built(b) => b.petals,
+        _ => None,
     };
     let w = bg.width;
     match kind {
@@ -276,6 +278,15 @@ fn seamless(bg: &BackgroundSpec) -> Option<(Ground, f64, u32, f64)> {
         MotifKind::Kikko => Some((Ground::Kikko, w / 2.0, petals.unwrap_or(1).clamp(1, 2) + 1, 30.0)),
         MotifKind::Shippo => Some((Ground::Shippo, w / 2.0, 1, 45.0)),
         _ => None,
+    }
+}
+
+/// The built-in motif `motif` names, or `None` for one read from a file.
+fn kind_of(motif: &MotifRef) -> Option<MotifKind> {
+    match motif {
+        MotifRef::Name(kind) => Some(*kind),
+        MotifRef::Built(b) => Some(b.kind),
+        MotifRef::File(_) => None,
     }
 }
 
@@ -348,9 +359,24 @@ struct Tiles<'a, 'b, 'c> {
 }
 
 impl Tiles<'_, '_, '_> {
+    /// Tile `d` placed by `m`, outline and details.
     fn push(&mut self, d: &Drawing, m: Affine) -> Result<()> {
-        let path = d.to_path(m);
-        let inside = self.clipper.clip(&path).inside;
+        self.push_path(&d.to_path(m))
+    }
+
+    /// Tile `d` placed by `m` in a grid, without its outline when that is
+    /// only the square its pattern fills (seigaiha): side by side the
+    /// waves run on across the tiles' edges, and a frame would be a seam
+    /// drawn between them.
+    fn push_in_grid(&mut self, d: &Drawing, m: Affine, kind: Option<MotifKind>) -> Result<()> {
+        match kind {
+            Some(MotifKind::Seigaiha) => self.push_path(&(m * d.details.clone())),
+            _ => self.push(d, m),
+        }
+    }
+
+    fn push_path(&mut self, path: &BezPath) -> Result<()> {
+        let inside = self.clipper.clip(path).inside;
         if inside.is_empty() {
             return Ok(());
         }

@@ -572,6 +572,20 @@ fn a_single_ground_tile_is_drawn_as_its_seamless_ground() {
     // Two motifs alternate as tiles, as before.
     let paths = background_paths("[\"seigaiha\", \"kikko\"]");
     assert!(paths.iter().any(|(id, _)| id.contains(".tile-")));
+    // Side by side, seigaiha tiles have no frame: beside shippō (arcs
+    // only) nothing straight is drawn.
+    let paths = background_paths("[\"seigaiha\", \"shippo\"]");
+    let tiles: Vec<&kurbo::BezPath> = paths
+        .iter()
+        .filter(|(id, _)| id.contains(".tile-"))
+        .map(|(_, p)| p)
+        .collect();
+    assert!(tiles.len() > 10, "{} tiles", tiles.len());
+    for seg in tiles.iter().flat_map(|p| p.segments()) {
+        if let kurbo::PathSeg::Line(l) = seg {
+            assert!(l.p0.distance(l.p1) < 0.05, "a tile frame: {l:?}");
+        }
+    }
 }
 
 #[test]
