@@ -333,7 +333,7 @@ fn a_four_megabyte_formula_is_refused_by_its_length() {
     render_is_refused(
         &text,
         "layers[0].voronoi[0].sites.density: is 4000001 characters long; a formula may be at \
-         most 1000",
+         most 200",
     );
 }
 
