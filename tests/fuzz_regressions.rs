@@ -57,3 +57,24 @@ fn every_seed_is_a_usable_input() {
     }
     assert!(seen >= 20, "{seen} seeds");
 }
+
+/// Each slow case the fuzzers kept (`fuzz/slow/<target>/`) is now refused
+/// before its work, by a budget or a limit it passes (the message names
+/// it), never run.
+#[test]
+fn every_slow_case_is_refused_before_its_work() {
+    let mut seen = 0;
+    for target in Target::ALL {
+        for case in cases("slow", target) {
+            let bytes = fs::read(&case).unwrap();
+            let e = target.run(&bytes).unwrap_err().to_string();
+            assert!(
+                e.contains("site-steps") || e.contains("limits.max_paths"),
+                "{}: {e}",
+                case.display()
+            );
+            seen += 1;
+        }
+    }
+    assert!(seen >= 1);
+}

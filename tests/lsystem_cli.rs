@@ -52,7 +52,7 @@ fn the_command_line_draws_what_the_description_draws() {
     let description = r#"version = 1
 seed = 1
 page = { size = "A5" }
-limits = { max_paths = 5000000 }
+limits = { max_paths = 1000000 }
 [[layers]]
 name = "lsystem"
 [[layers.lsystem]]

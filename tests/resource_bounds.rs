@@ -242,3 +242,122 @@ fn a_description_naming_a_fifo_is_refused_without_waiting() {
         .stderr(predicate::str::contains("not a regular file"));
     assert!(!dir.path().join("out.svg").exists());
 }
+
+/// A description of `tests/data/hostile/`.
+fn hostile(name: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/hostile")
+        .join(name);
+    fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// `moyo render` of the description `text` (beside the built-in images)
+/// fails saying `message` — the field, the estimate and the limit — and
+/// writes nothing.
+fn render_is_refused(text: &str, message: &str) {
+    let dir = tempdir();
+    fs::write(dir.path().join("scene.toml"), text).unwrap();
+    let images = dir.path().join("images");
+    fs::create_dir(&images).unwrap();
+    let portrait =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/images/portrait.jpg");
+    fs::copy(portrait, images.join("portrait.jpg")).unwrap();
+    moyo(&dir)
+        .args(["render", "scene.toml", "-o", "out.svg", "--png", "out.png"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(message))
+        .stderr(predicate::str::contains("panicked").not());
+    assert_eq!(
+        entries(dir.path()),
+        ["images".to_string(), "scene.toml".to_string()].into()
+    );
+}
+
+/// The slow case the fuzzer kept (`fuzz/slow/scene_extremes/`): 1,000
+/// relaxation steps on 1,103 sites, then on 508. Refused by the scene's
+/// site-step budget before the first step; with 900 steps on the first
+/// table it fits, and the second table is refused for what is left.
+#[test]
+fn relaxation_past_its_site_steps_is_refused_before_a_step() {
+    let text = hostile("relax-1000-steps-on-1103-sites.toml");
+    render_is_refused(
+        &text,
+        "layers[0].voronoi[0].relax: 1000 steps × 1103 sites is 1103000 site-steps of \
+         relaxation, more than the 1000000 left of a scene's 1000000",
+    );
+    let first = text.replacen("relax = 1000", "relax = 900", 1);
+    render_is_refused(
+        &first,
+        "layers[0].voronoi[1].relax: 1000 steps × 508 sites is 508000 site-steps of \
+         relaxation, more than the 7300 left of a scene's 1000000 (992700 taken by earlier \
+         tables)",
+    );
+}
+
+/// A leaf on each of a million symbols is counted from the turtle's marks
+/// before any leaf is drawn: past the paths left with the largest path
+/// budget; with half as many, past the segments left (48 a leaf).
+#[test]
+fn a_million_ornaments_are_refused_before_one_is_drawn() {
+    let text = hostile("lsystem-a-leaf-on-each-of-a-million-symbols.toml");
+    render_is_refused(
+        &text,
+        "layers[0].lsystem[0].leaves: the turtle meets `L` 1048575 times: 1048575 ornaments \
+         would make 1048575 paths, more than the 999999 left of limits.max_paths",
+    );
+    render_is_refused(
+        &text.replace("iterations = 20", "iterations = 19"),
+        "layers[0].lsystem[0].leaves: the turtle meets `L` 524287 times: 524287 ornaments \
+         would make about",
+    );
+}
+
+#[test]
+fn a_vine_guide_past_twenty_metres_is_refused() {
+    render_is_refused(
+        &hostile("vine-guide-280-m.toml"),
+        "layers[0].vine[0].guide: is 280014 mm long; a vine grows along at most 20000 mm",
+    );
+}
+
+/// A 4 MB density formula (`u+u+…`, about 1 KB a term once parsed) is
+/// refused by its length before it is parsed.
+#[test]
+fn a_four_megabyte_formula_is_refused_by_its_length() {
+    let formula = "u+".repeat(2_000_000) + "u";
+    let text = format!(
+        "version = 1\n[[layers]]\nname = \"a\"\n[[layers.voronoi]]\nrelax = 1\n\
+         [layers.voronoi.sites]\ndistribution = \"uniform\"\ncount = 10\ndensity = \"{formula}\"\n"
+    );
+    render_is_refused(
+        &text,
+        "layers[0].voronoi[0].sites.density: is 4000001 characters long; a formula may be at \
+         most 200",
+    );
+}
+
+/// 80,000 layers took 15 s and 1.1 GB; a description holds at most
+/// 10,000.
+#[test]
+fn more_layers_than_ten_thousand_are_refused() {
+    let layers: String = (0..10_001)
+        .map(|i| format!("[[layers]]\nname = \"l{i}\"\n"))
+        .collect();
+    render_is_refused(
+        &format!("version = 1\n{layers}"),
+        "layers: has 10001 layers; a description may have at most 10000",
+    );
+}
+
+/// 5,000 steps of elements 0.05 of their region wide: refused before the
+/// loop, by the work its steps would ask for.
+#[test]
+fn zentangle_steps_past_their_work_are_refused_before_the_loop() {
+    render_is_refused(
+        &hostile("zentangle-5000-steps-at-scale-0.05.toml"),
+        "layers[0].zentangle[0].steps: 5000 steps at scale 0.05 are about 40000000 units of \
+         work (steps ÷ scale³), more than 150000: fewer steps, or a larger scale (at 0.05, 18 \
+         steps)",
+    );
+}

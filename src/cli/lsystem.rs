@@ -271,7 +271,7 @@ impl LSystemArgs {
                     }
                 }
             }
-            s.limits.max_paths = 5_000_000;
+            s.limits.max_paths = moyo::spec::MAX_PATHS;
             if table.style == LimbStyle::Outline {
                 // Limb outlines merge into one silhouette, as a person
                 // draws a plant: no line inside it.

@@ -194,6 +194,51 @@ impl PartialEq for Formula {
     }
 }
 
+/// The longest formula, in characters. A formula is evaluated at every
+/// point a density is read (millions when a million sites are spread by
+/// it), its cost growing with its length, and parsed into about 1 KB a
+/// term: a 4 MB formula took gigabytes, and 999 characters spreading
+/// Poisson sites 0.3 mm apart over A4 took 81 s (one name: 3.5 s). A
+/// drawing's formula is a line (`"0.5 + 0.5 * sin(x / 10)"`).
+pub const MAX_FORMULA_CHARS: usize = 200;
+
+/// The deepest brackets may nest in a formula: the parser descends once
+/// a level.
+pub const MAX_FORMULA_DEPTH: usize = 32;
+
+/// Refuses a formula past [`MAX_FORMULA_CHARS`] or [`MAX_FORMULA_DEPTH`]
+/// before any of it is parsed.
+fn check_size(text: &str) -> Result<()> {
+    let chars = text.chars().count();
+    if chars > MAX_FORMULA_CHARS {
+        return Err(Error::invalid(
+            "density",
+            format!("is {chars} characters long; a formula may be at most {MAX_FORMULA_CHARS}"),
+        ));
+    }
+    let (mut depth, mut deepest) = (0usize, 0usize);
+    for c in text.chars() {
+        match c {
+            '(' => {
+                depth += 1;
+                deepest = deepest.max(depth);
+            }
+            ')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    if deepest > MAX_FORMULA_DEPTH {
+        return Err(Error::invalid(
+            "density",
+            format!(
+                "nests brackets {deepest} deep; a formula may nest them at most \
+                 {MAX_FORMULA_DEPTH} deep"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The names a formula may use, in the order [`Formula::value`] takes them.
 const NAMES: [&str; 4] = ["x", "y", "u", "v"];
 
@@ -202,8 +247,11 @@ impl Formula {
     ///
     /// # Errors
     /// [`Error::Invalid`] (field `density`) for text that is not a formula
-    /// or uses a name other than `x`, `y`, `u`, `v`.
+    /// or uses a name other than `x`, `y`, `u`, `v`; for one longer than
+    /// [`MAX_FORMULA_CHARS`] or with brackets nested deeper than
+    /// [`MAX_FORMULA_DEPTH`], before it is parsed.
     pub fn parse(text: &str) -> Result<Formula> {
+        check_size(text)?;
         let expr = exmex::parse::<f64>(text).map_err(|e| {
             Error::invalid(
                 "density",
@@ -296,6 +344,39 @@ mod tests {
         assert!(d.at(Point::new(5.0, 45.0)).abs() < 1e-6);
         assert_eq!(d.at(Point::new(105.0, 20.0)), 0.0);
         assert!(d.at(Point::new(105.0, 35.0)) > 0.99);
+    }
+
+    #[test]
+    fn a_formula_past_its_length_or_depth_is_refused_before_it_is_parsed() {
+        // The longest allowed parses; one character more is refused,
+        // naming its length and the limit.
+        let terms = "u+".repeat(MAX_FORMULA_CHARS / 2 - 1) + "u";
+        assert_eq!(terms.len(), MAX_FORMULA_CHARS - 1);
+        assert!(Formula::parse(&terms).is_ok());
+        let long = "u+".repeat(2_000_000) + "u";
+        let e = Formula::parse(&long).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "density: is 4000001 characters long; a formula may be at most 200"
+        );
+        let deep = |n: usize| "(".repeat(n) + "u" + &")".repeat(n);
+        assert!(Formula::parse(&deep(MAX_FORMULA_DEPTH)).is_ok());
+        let e = Formula::parse(&deep(MAX_FORMULA_DEPTH + 1))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "density: nests brackets 33 deep; a formula may nest them at most 32 deep"
+        );
+        // The longest chains of operators and functions within the limit
+        // parse (or are refused) without exhausting a test thread's stack.
+        for text in [
+            "-".repeat(MAX_FORMULA_CHARS - 1) + "u",
+            "sin(".repeat(MAX_FORMULA_DEPTH) + "u" + &")".repeat(MAX_FORMULA_DEPTH),
+            "u^".repeat(MAX_FORMULA_CHARS / 2 - 1) + "u",
+        ] {
+            let _ = Formula::parse(&text);
+        }
     }
 
     #[test]

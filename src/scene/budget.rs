@@ -7,6 +7,10 @@
 //! counted per table once it is built, and a family whose one path can
 //! grow without bound (an L-system's turtle) stops at what is left
 //! ([`PathBudget::segments_left`]), with [`Error::SegmentBudget`].
+//! Relaxation (Voronoi sites moved step by step) is counted in
+//! site-steps, before each table relaxes
+//! ([`PathBudget::take_site_steps`]): its time grows with sites × steps
+//! while it makes no path at all.
 
 use crate::error::{Error, Result};
 
@@ -16,6 +20,7 @@ use crate::error::{Error, Result};
 pub struct PathBudget {
     paths: Count,
     segments: Count,
+    site_steps: Count,
 }
 
 /// One count against its limit.
@@ -47,15 +52,24 @@ impl PathBudget {
     /// 100,000 strokes takes many hours to plot), small enough to stay fast.
     pub const DEFAULT_LIMIT: usize = 200_000;
 
-    /// The default segment limit: ten million segments make an SVG of
-    /// about 150 MB, far past what a plotter draws in a day.
-    pub const DEFAULT_SEGMENT_LIMIT: usize = 10_000_000;
+    /// The default segment limit, also the most a description may ask
+    /// for: five million segments make an SVG of about 75 MB, far past
+    /// what a plotter draws in a day, and a render of them stays under
+    /// about 2 GB.
+    pub const DEFAULT_SEGMENT_LIMIT: usize = 5_000_000;
+
+    /// The most site-steps of relaxation in a scene (each step's sites,
+    /// summed over the steps and tables): a step costs 3–6 µs a site in
+    /// release on two cores, so the whole budget about 3–6 s. The
+    /// templates use at most 385,000 (`stipple-lbg`).
+    pub const SITE_STEP_LIMIT: usize = 1_000_000;
 
     /// A budget of `limit` paths and the default number of segments.
     pub fn new(limit: usize) -> PathBudget {
         PathBudget {
             paths: Count::new(limit),
             segments: Count::new(PathBudget::DEFAULT_SEGMENT_LIMIT),
+            site_steps: Count::new(PathBudget::SITE_STEP_LIMIT),
         }
     }
 
@@ -85,6 +99,11 @@ impl PathBudget {
         self.paths.used
     }
 
+    /// Paths that may still be made.
+    pub fn paths_left(&self) -> usize {
+        self.paths.limit - self.paths.used
+    }
+
     /// Takes `n` segments for `what`; fails when the limit would be passed.
     pub fn take_segments(&mut self, n: usize, what: impl FnOnce() -> String) -> Result<()> {
         if self.segments.take(n) {
@@ -100,6 +119,17 @@ impl PathBudget {
     /// Segments that may still be made.
     pub fn segments_left(&self) -> usize {
         self.segments.limit - self.segments.used
+    }
+
+    /// Takes `n` site-steps of relaxation; says no, taking nothing, when
+    /// that would pass [`PathBudget::SITE_STEP_LIMIT`].
+    pub fn take_site_steps(&mut self, n: usize) -> bool {
+        self.site_steps.take(n)
+    }
+
+    /// Site-steps of relaxation that may still be run.
+    pub fn site_steps_left(&self) -> usize {
+        self.site_steps.limit - self.site_steps.used
     }
 }
 
@@ -127,5 +157,15 @@ mod tests {
         assert!(e.to_string().contains("koch"));
         b.take_segments(40, || "x".into()).unwrap();
         assert_eq!(b.segments_left(), 0);
+    }
+
+    #[test]
+    fn site_steps_are_counted_over_the_scene() {
+        let mut b = PathBudget::new(10);
+        assert!(b.take_site_steps(PathBudget::SITE_STEP_LIMIT - 5));
+        assert!(!b.take_site_steps(6));
+        assert_eq!(b.site_steps_left(), 5);
+        assert!(b.take_site_steps(5));
+        assert_eq!(b.site_steps_left(), 0);
     }
 }

@@ -42,6 +42,22 @@ use crate::units::{Margins, Orientation, Page, PaperName};
 /// The newest file format version this build reads and writes.
 pub const FORMAT_VERSION: u32 = 1;
 
+/// The largest `limits.max_paths`: a million short paths render in
+/// about 1 GB; at the former 5 million a description could ask for more
+/// memory than a desktop has.
+pub const MAX_PATHS: usize = 1_000_000;
+
+/// The largest `limits.max_segments`, also its default: a render holds
+/// a few hundred bytes a segment at its peak (4.2 million segments of a
+/// Hilbert curve took 1.5 GB in release). At the former 50 million a
+/// million leaves on an L-system aborted past 11 GB.
+pub const MAX_SEGMENTS: usize = crate::scene::PathBudget::DEFAULT_SEGMENT_LIMIT;
+
+/// The most layers a description may have. Each is a group of its own
+/// through every stage of the plot; 10,000 render in under a second,
+/// 80,000 took 15 s and 1.1 GB (release, one short path each).
+pub const MAX_LAYERS: usize = 10_000;
+
 /// File format of a scene description.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
@@ -98,7 +114,7 @@ pub struct SceneSpec {
     #[serde(default)]
     pub lines: RegionLinesSpec,
     /// Depth layers; the first listed is in front unless `depth` says
-    /// otherwise.
+    /// otherwise (at most [`MAX_LAYERS`]).
     #[serde(default)]
     pub layers: Vec<LayerSpec>,
     /// Plot pipeline stages applied before writing: the pen stage unless
@@ -226,12 +242,13 @@ fn default_precision() -> u8 {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LimitsSpec {
-    /// The most paths the scene may make (1 – 5,000,000); generation stops
-    /// with an error past it.
+    /// The most paths the scene may make (1 – [`MAX_PATHS`], default
+    /// 200,000); generation stops with an error past it.
     #[serde(default = "default_max_paths")]
     pub max_paths: usize,
     /// The most path segments (lines and curves) all paths may hold
-    /// (1 – 50,000,000); generation stops with an error past it.
+    /// (1 – [`MAX_SEGMENTS`], the default); generation stops with an error
+    /// past it.
     #[serde(
         default = "default_max_segments",
         skip_serializing_if = "is_default_max_segments"

@@ -8,6 +8,7 @@ use std::collections::BTreeSet;
 use std::fmt::Display;
 
 use super::{LayerSpec, MarginSpec, PaperSize, SceneSpec};
+use super::{MAX_PATHS, MAX_SEGMENTS};
 use crate::error::{Error, Result};
 use crate::scene::traditional;
 use crate::scene::Color;
@@ -225,8 +226,13 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
     range("seed", s.seed, 0, super::seed::MAX_SEED)?;
     page(s)?;
     range("output.precision", s.output.precision, 0, 8)?;
-    range("limits.max_paths", s.limits.max_paths, 1, 5_000_000)?;
-    range("limits.max_segments", s.limits.max_segments, 1, 50_000_000)?;
+    range("limits.max_paths", s.limits.max_paths, 1, MAX_PATHS)?;
+    range(
+        "limits.max_segments",
+        s.limits.max_segments,
+        1,
+        MAX_SEGMENTS,
+    )?;
 
     if let Some(name) = &s.palette {
         if traditional::palette(name).is_none() {
@@ -277,6 +283,17 @@ pub(crate) fn scene(s: &SceneSpec) -> Result<()> {
         device.resolve()?;
     }
 
+    // Not a `range`: the ranges recorded are the numbers a fuzzer edits.
+    if s.layers.len() > super::MAX_LAYERS {
+        return Err(Error::invalid(
+            "layers",
+            format!(
+                "has {} layers; a description may have at most {}",
+                s.layers.len(),
+                super::MAX_LAYERS
+            ),
+        ));
+    }
     let mut names = BTreeSet::new();
     for (i, layer) in s.layers.iter().enumerate() {
         let f = format!("layers[{i}]");

@@ -47,7 +47,7 @@ use crate::scene::{Group, Style};
 use crate::spec::{LSystemSpec, LimbStyle, Points, SketchSpec};
 use draw::{flat, limb_path, polygon_path, Flat, Projection};
 pub(crate) use growing::GrowingSketch;
-use ornament::{ornaments, sites, Kind};
+use ornament::{check_budget, ornaments, sites, Kind};
 
 /// The most modules a word may reach while rewriting (ABOP fig. 1.24a at
 /// n = 10 has 24.4 million).
@@ -85,6 +85,20 @@ pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) ->
     cx.take_paths(paths * placements.len(), || {
         format!("the L-system {group_id} ({paths} limbs a copy)")
     })?;
+    let ornamented = [
+        (&spec.leaves, Kind::Leaf, "leaves"),
+        (&spec.flowers, Kind::Flower, "flowers"),
+    ];
+    let at: Vec<_> = ornamented
+        .iter()
+        .map(|(o, _, _)| o.as_ref().map(|o| sites(&flat, o)))
+        .collect();
+    for ((ornament, _, name), at) in ornamented.iter().zip(&at) {
+        if let (Some(o), Some(at)) = (ornament, at) {
+            let field = cx.field(name);
+            check_budget(o, at.len(), placements.len(), &field, cx)?;
+        }
+    }
     let style = Style::default();
     for (i, place) in placements.iter().enumerate() {
         let plant_id = format!("{group_id}.plant-{i}");
@@ -104,10 +118,9 @@ pub(super) fn build(spec: &LSystemSpec, group_id: &str, cx: &mut Context<'_>) ->
             );
         }
         group.push_group(plant);
-        for (ornament, kind) in [(&spec.leaves, Kind::Leaf), (&spec.flowers, Kind::Flower)] {
-            if let Some(o) = ornament {
-                let at = sites(&flat, o);
-                group.push_group(ornaments(o, kind, &at, *place, &plant_id, cx)?);
+        for ((ornament, kind, _), at) in ornamented.iter().zip(&at) {
+            if let (Some(o), Some(at)) = (ornament, at) {
+                group.push_group(ornaments(o, *kind, at, *place, &plant_id, cx)?);
             }
         }
     }

@@ -16,6 +16,7 @@ use crate::motif::place::{angle_from_up, put, sized, Put};
 use crate::motif::Context;
 use crate::scene::Group;
 use crate::spec::OrnamentSpec;
+use crate::Error;
 
 /// A place for an ornament in the drawing's units: where, and the
 /// direction the limb or the turtle headed there.
@@ -55,6 +56,70 @@ impl Kind {
             Kind::Leaf => "leaf",
         }
     }
+}
+
+/// The cost of `ornament` at `sites` in each of `copies` drawings,
+/// estimated before any is drawn and refused (naming `field`, the
+/// table's `leaves` or `flowers`) past what
+/// is left of the scene's budget: one path each, and the segments of its
+/// motif (each motif of the list drawn once to count them). A symbol met
+/// a million times would otherwise build a million ornaments first.
+pub(super) fn check_budget(
+    ornament: &OrnamentSpec,
+    sites: usize,
+    copies: usize,
+    field: &str,
+    cx: &mut Context<'_>,
+) -> Result<()> {
+    let count = sites.saturating_mul(copies);
+    let what = match ornament.symbol_char() {
+        Some(symbol) => format!("the turtle meets `{symbol}` {sites} times"),
+        None => format!("the drawing has {sites} tips"),
+    };
+    let copies = if copies > 1 {
+        format!(" in each of {copies} drawings")
+    } else {
+        String::new()
+    };
+    let left = cx.budget().paths_left();
+    if count > left {
+        return Err(Error::invalid(
+            field,
+            format!(
+                "{what}{copies}: {count} ornaments would make {count} paths, more than the \
+                 {left} left of limits.max_paths; lower the iterations"
+            ),
+        ));
+    }
+    let mut rng = cx.stream(&format!("{field}/estimate"));
+    let per_motif = ornament
+        .motifs
+        .iter()
+        .map(|m| {
+            let d = cx.library().draw(m, &mut rng)?;
+            Ok(d.to_path(Affine::IDENTITY)
+                .elements()
+                .iter()
+                .filter(|e| !matches!(e, kurbo::PathEl::MoveTo(_)))
+                .count())
+        })
+        .collect::<Result<Vec<usize>>>()?;
+    // Ornament i draws motif i mod n.
+    let n = per_motif.len().max(1);
+    let all: usize = per_motif.iter().sum();
+    let first: usize = per_motif.iter().take(count % n).sum();
+    let segments = (count / n).saturating_mul(all).saturating_add(first);
+    let left = cx.budget().segments_left();
+    if segments > left {
+        return Err(Error::invalid(
+            field,
+            format!(
+                "{what}{copies}: {count} ornaments would make about {segments} segments, \
+                 more than the {left} left of limits.max_segments; lower the iterations"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Draws `ornament` at `sites` of the drawing placed by `place` into a

@@ -12,10 +12,35 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::error::{Error, Result};
 use crate::family::vine::engine::{Leaf, Plant};
 
 /// Samples of the line are this far apart, mm.
 const SPACING: f64 = 0.25;
+
+/// The longest guide, mm: twice the longest side of the largest page.
+/// The rod is drawn, and hidden where the stem passes over it, along all
+/// of it, at about 30 KB and 0.1 ms a millimetre in release (a 280 m
+/// guide aborted past 4 GB).
+pub(super) const MAX_LENGTH: f64 = 20_000.0;
+
+/// The length of `line` (page mm), refused (naming `field`) past
+/// [`MAX_LENGTH`] before anything is grown along it.
+pub(super) fn checked_length(line: &[DVec2], field: &str) -> Result<f64> {
+    let total = length(line);
+    if total > MAX_LENGTH {
+        return Err(Error::invalid(
+            field,
+            format!("is {total:.0} mm long; a vine grows along at most {MAX_LENGTH:.0} mm"),
+        ));
+    }
+    Ok(total)
+}
+
+/// The length of the polyline `line`.
+fn length(line: &[DVec2]) -> f64 {
+    line.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
 
 /// A line on the page, sampled evenly by arc length.
 #[derive(Debug, Clone)]
@@ -29,7 +54,7 @@ pub(super) struct Guide {
 impl Guide {
     /// The line through `line` (page mm, ≥ 2 points, with length).
     pub(super) fn new(line: &[DVec2]) -> Guide {
-        let total: f64 = line.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let total = length(line);
         let n = ((total / SPACING).ceil() as usize).clamp(1, 1_000_000);
         let step = total / n as f64;
         let mut points = Vec::with_capacity(n + 1);

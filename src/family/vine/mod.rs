@@ -86,10 +86,10 @@ pub(super) fn build(spec: &VineSpec, group_id: &str, cx: &mut Context<'_>) -> Re
                 svg: g.svg.as_deref(),
                 line: g.line,
             };
-            Some((
-                Guide::new(&stroke_points(&stroke, &cx.field("guide"), cx)?),
-                g.radius,
-            ))
+            let field = cx.field("guide");
+            let line = stroke_points(&stroke, &field, cx)?;
+            guide::checked_length(&line, &field)?;
+            Some((Guide::new(&line), g.radius))
         }
         None => None,
     };

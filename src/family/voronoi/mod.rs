@@ -54,7 +54,7 @@ use crate::motif::region::region;
 use crate::motif::dot::dot;
 use crate::motif::Context;
 use crate::rng::RandomStream;
-use crate::scene::{Group, Style};
+use crate::scene::{Group, PathBudget, Style};
 use crate::spec::{Distribution, Draw, RelaxationMethod, VoronoiSpec, MAX_SITES};
 
 /// Builds a Voronoi pattern into a group with id `group_id`.
@@ -294,6 +294,13 @@ fn relaxed(
     if spec.relax == 0 {
         return Ok(sites);
     }
+    // Its cost, before any is spent: every step run on these sites (LBG's
+    // count changes, so `relax` also stops before a step past the budget).
+    let left = cx.budget().site_steps_left();
+    let estimate = sites.len().saturating_mul(spec.relax as usize);
+    if estimate > left {
+        return Err(relax_budget(spec, sites.len(), estimate, left, cx));
+    }
     let how = match spec.relaxation {
         RelaxationMethod::Lloyd => Relaxation::lloyd(spec.relax),
         RelaxationMethod::Lbg => Relaxation::lbg(
@@ -301,7 +308,8 @@ fn relaxed(
             Lbg::new(Lbg::mass_for_spacing(spec.sites.spacing())),
         ),
     }
-    .with_settled(spec.converge.unwrap_or(0.0));
+    .with_settled(spec.converge.unwrap_or(0.0))
+    .with_max_site_steps(left);
     // Cells weigh what they hold to the scale the density changes on:
     // an image's pixel, and at most half the spacing of the sites — that
     // of `count` (or the given) sites spread evenly when none is given.
@@ -321,9 +329,41 @@ fn relaxed(
     let first = sites.len();
     let relaxed = relax(sites, domain, &options, rho, &how, &mut |_| cx.advance(1))
         .map_err(|e| site_error(e, spec, domain.area(), cx))?;
+    // The sites each step ran on: the first count, then each step's result.
+    let spent = std::iter::once(first)
+        .chain(relaxed.steps.iter().map(|r| r.sites))
+        .take(relaxed.steps.len())
+        .sum();
+    let taken = cx.budget().take_site_steps(spent);
+    debug_assert!(taken, "relax runs no step past the site-steps left");
     cx.advance_to(start + spec.relax as usize);
     cx.note(group_id, convergence(spec, first, &relaxed));
     Ok(relaxed.sites)
+}
+
+/// The refusal of a relaxation of `sites` whose `estimate` (site-steps)
+/// passes the `left` of the scene's budget.
+fn relax_budget(
+    spec: &VoronoiSpec,
+    sites: usize,
+    estimate: usize,
+    left: usize,
+    cx: &Context<'_>,
+) -> Error {
+    let limit = PathBudget::SITE_STEP_LIMIT;
+    let earlier = if left < limit {
+        format!(" ({} taken by earlier tables)", limit - left)
+    } else {
+        String::new()
+    };
+    Error::invalid(
+        cx.field("relax"),
+        format!(
+            "{} steps × {sites} sites is {estimate} site-steps of relaxation, more than the \
+             {left} left of a scene's {limit}{earlier}: lower relax, or widen the sites' spacing",
+            spec.relax
+        ),
+    )
 }
 
 /// One line on how a relaxation went: steps, sites, the last step's mean
@@ -524,6 +564,10 @@ fn given(points: &[[f64; 2]], region: &Region, cx: &Context<'_>) -> Result<Vec<P
 fn site_error(e: Error, spec: &VoronoiSpec, area: f64, cx: &Context<'_>) -> Error {
     let s = &spec.sites;
     match e {
+        // The relaxation's own budget, found as LBG's sites grew.
+        Error::Invalid { field, message, .. } if field == "relax" => {
+            Error::invalid(cx.field("relax"), message)
+        }
         Error::Invalid { field, message, .. } => {
             let name = match field.as_str() {
                 "radius" | "mass" => "spacing",

@@ -291,6 +291,11 @@ fn bad_tables_are_refused_with_their_field() {
             "layers[0].zentangle[0].elements[0]: unknown element `xx`",
         ),
         ("steps = 9000\n", "layers[0].zentangle[0].steps: must be between 0 and 5000"),
+        // The loop's work: 19 steps at the smallest scale are past it.
+        (
+            "steps = 19\nscale = 0.05\n",
+            "layers[0].zentangle[0].steps: 19 steps at scale 0.05 are about 152000 units",
+        ),
         (
             "smallest = 50\n[layers.zentangle.region]\ncircle = { centre = [50, 50], radius = 20 }\n",
             "layers[0].zentangle[0].region: is too small to draw in",

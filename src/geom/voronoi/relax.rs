@@ -221,6 +221,10 @@ pub struct Relaxation {
     /// average (mm); 0: run every step (Lloyd) or until no site splits or
     /// goes (LBG).
     pub settled: f64,
+    /// The most work: the sites of each step summed over the steps run
+    /// (a step's cost grows with its sites). A step that would pass it is
+    /// not run.
+    pub max_site_steps: usize,
 }
 
 impl Relaxation {
@@ -230,6 +234,7 @@ impl Relaxation {
             method: Method::Lloyd,
             steps,
             settled: 0.0,
+            max_site_steps: usize::MAX,
         }
     }
 
@@ -239,6 +244,7 @@ impl Relaxation {
             method: Method::Lbg(lbg),
             steps,
             settled: 0.0,
+            max_site_steps: usize::MAX,
         }
     }
 
@@ -246,6 +252,13 @@ impl Relaxation {
     /// `mm`.
     pub const fn with_settled(mut self, mm: f64) -> Relaxation {
         self.settled = mm;
+        self
+    }
+
+    /// This relaxation, running no step that would bring the sites summed
+    /// over the steps past `n` (see [`Relaxation::max_site_steps`]).
+    pub const fn with_max_site_steps(mut self, n: usize) -> Relaxation {
+        self.max_site_steps = n;
         self
     }
 }
@@ -289,7 +302,9 @@ pub struct Relaxed {
 /// As [`Diagram::new`] (for LBG, [`Error::Budget`] when splitting passes
 /// [`CellOptions::max_sites`]); with LBG, [`Error::Invalid`] (field
 /// `mass`) when every site was removed: the region holds less than one
-/// site's worth of density.
+/// site's worth of density; [`Error::Invalid`] (field `relax`) before a
+/// step that would pass [`Relaxation::max_site_steps`] (LBG's sites grow
+/// as they split).
 pub fn relax(
     sites: Vec<Point>,
     domain: &Domain,
@@ -307,7 +322,21 @@ pub fn relax(
     let mut sites = sites;
     let mut steps = Vec::new();
     let mut converged = false;
+    let mut work = 0usize;
     for k in 0..how.steps {
+        work = work.saturating_add(sites.len());
+        if work > how.max_site_steps {
+            return Err(Error::invalid(
+                "relax",
+                format!(
+                    "step {} of {} sites would bring the relaxation to {work} site-steps \
+                     (sites × steps), more than the {} allowed",
+                    k + 1,
+                    sites.len(),
+                    how.max_site_steps
+                ),
+            ));
+        }
         let report = match how.method {
             Method::Lloyd => {
                 let step = lloyd_weighed(&sites, domain, options, &weights)?;

@@ -578,7 +578,7 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         // The family's own limit on sites (a million) is the one that
         // counts here.
         limits: LimitsSpec {
-            max_paths: 5_000_000,
+            max_paths: crate::spec::MAX_PATHS,
             ..LimitsSpec::default()
         },
         pens: vec![PenSpec {
