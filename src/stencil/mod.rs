@@ -21,7 +21,7 @@
 //!
 //! The booleans work on polygons in the boolean library's own form
 //! (`shapes`), one integer sweep each: a full A3 kimono design becomes a
-//! stencil in about a second (BENCHMARKS.md, section 14).
+//! stencil in about two seconds of CPU (BENCHMARKS.md, section 14).
 //!
 //! The result's [`Stencil::cut_scene`] is what the knife cuts (every
 //! boundary of the cut-outs, closed), to be written like any drawing, in
