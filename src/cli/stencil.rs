@@ -200,6 +200,16 @@ pub(crate) fn stencil(args: &StencilArgs) -> Result<(), CliError> {
         args.output.display(),
         cut.scene.path_count()
     );
+    // What the command can do about the blade's findings.
+    if !made.report.narrow_cuts.is_empty() && !args.widen {
+        eprintln!(
+            "hint: --widen cuts every stroke at least --min-feature ({} mm) wide",
+            args.min_feature
+        );
+    }
+    if !made.report.sharp_corners.is_empty() && !args.round_corners {
+        eprintln!("hint: --round-corners rounds the paper's sharp tips off");
+    }
     if !made.report.loose.is_empty() {
         eprintln!(
             "warning: {} parts of the sheet still fall out (see above); \

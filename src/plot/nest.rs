@@ -15,7 +15,7 @@
 //! grid of the outlines' bounding boxes, so a sheet of many small shapes
 //! costs about one winding test per shape and per outline around it.
 
-use kurbo::{BezPath, Point, Rect, Shape};
+use kurbo::{BezPath, ParamCurve, PathSeg, Point, Rect, Shape};
 
 use super::flatten::{set_paths, split_subpaths, take_paths};
 use super::sort::{self, SortOptions};
@@ -63,6 +63,10 @@ pub fn depths(paths: &[StyledPath]) -> Vec<usize> {
         .map(|(i, p)| (i, p.path.bounding_box()))
         .collect();
     let grid = Grid::new(&outlines);
+    let bands: Vec<Bands> = outlines
+        .iter()
+        .map(|&(j, _)| Bands::new(&paths[j].path))
+        .collect();
     paths
         .iter()
         .enumerate()
@@ -75,7 +79,7 @@ pub fn depths(paths: &[StyledPath]) -> Vec<usize> {
                 .iter()
                 .filter(|&&k| {
                     let (j, b) = outlines[k];
-                    j != i && encloses(b, j, own, i) && winds(&paths[j].path, probe)
+                    j != i && encloses(b, j, own, i) && bands[k].winds(probe)
                 })
                 .count()
         })
@@ -93,9 +97,76 @@ fn encloses(outer: Rect, j: usize, inner: Rect, i: usize) -> bool {
     holds && (outer != inner || j < i)
 }
 
-/// Whether the closed `path` goes round `p`.
-fn winds(path: &BezPath, p: Point) -> bool {
-    path.winding(p) != 0
+/// A closed outline's segments in horizontal bands, so that a winding
+/// test meets only the segments that reach the probe's height: a
+/// stencil's large outlines (thousands of vertices, round most of the
+/// other cuts) would otherwise cost a pass over all their vertices for
+/// every path inside them. A segment goes into every band its control
+/// points reach, so that the band of a point holds every segment a ray
+/// from it can cross: the winding number is the same as the whole path's.
+struct Bands {
+    y0: f64,
+    step: f64,
+    /// Each band's segments, each its own subpath (a path's winding
+    /// number is the sum of its segments').
+    bands: Vec<BezPath>,
+}
+
+/// About this many segments to a band; an outline with fewer than two
+/// bands' worth is tested whole.
+const BAND_SEGMENTS: usize = 16;
+
+impl Bands {
+    fn new(path: &BezPath) -> Bands {
+        let segments: Vec<PathSeg> = path.segments().collect();
+        let n = (segments.len() / BAND_SEGMENTS).clamp(1, 4096);
+        let reach = |seg: &PathSeg| {
+            let ys = match *seg {
+                PathSeg::Line(l) => [l.p0.y, l.p1.y, l.p1.y, l.p1.y],
+                PathSeg::Quad(q) => [q.p0.y, q.p1.y, q.p2.y, q.p2.y],
+                PathSeg::Cubic(c) => [c.p0.y, c.p1.y, c.p2.y, c.p3.y],
+            };
+            ys.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &y| {
+                    (lo.min(y), hi.max(y))
+                })
+        };
+        let (y0, y1) = segments
+            .iter()
+            .map(reach)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, b)| {
+                (lo.min(a), hi.max(b))
+            });
+        let step = (y1 - y0) / n as f64;
+        let mut bands = Bands {
+            y0,
+            step,
+            bands: vec![BezPath::new(); if step > 0.0 { n } else { 1 }],
+        };
+        for seg in &segments {
+            let (lo, hi) = reach(seg);
+            for k in bands.band(lo)..=bands.band(hi) {
+                let band = &mut bands.bands[k];
+                band.move_to(seg.start());
+                band.push(seg.as_path_el());
+            }
+        }
+        bands
+    }
+
+    /// The band of height `y`: the bands' order is the heights' order,
+    /// those beyond the ends clamped to them.
+    fn band(&self, y: f64) -> usize {
+        if self.bands.len() == 1 {
+            return 0;
+        }
+        (((y - self.y0) / self.step).floor().max(0.0) as usize).min(self.bands.len() - 1)
+    }
+
+    /// Whether the outline goes round `p`.
+    fn winds(&self, p: Point) -> bool {
+        self.bands[self.band(p.y)].winding(p) != 0
+    }
 }
 
 /// Bounding boxes of outlines by grid cell: about one cell per outline.
@@ -181,6 +252,36 @@ mod tests {
             .iter()
             .filter_map(|el| el.end_point())
             .all(|p| outer.winding(p) != 0)
+    }
+
+    #[test]
+    fn an_outline_in_bands_winds_round_the_same_points_as_whole() {
+        // A wavy ring of 400 sides with a curved notch: 25 bands.
+        let mut outline = BezPath::new();
+        for k in 0..400 {
+            let a = std::f64::consts::TAU * f64::from(k) / 400.0;
+            let r = 40.0 + 6.0 * (9.0 * a).sin();
+            let p = Point::new(50.0 + r * a.cos(), 50.0 + r * a.sin());
+            if k == 0 {
+                outline.move_to(p);
+            } else {
+                outline.line_to(p);
+            }
+        }
+        outline.curve_to((60.0, 40.0), (40.0, 60.0), (90.0, 50.0));
+        outline.close_path();
+        let bands = Bands::new(&outline);
+        assert!(bands.bands.len() > 20, "{}", bands.bands.len());
+        let mut inside = 0;
+        for i in 0..=120 {
+            for j in 0..=120 {
+                let p = Point::new(f64::from(i) * 0.85 - 1.0, f64::from(j) * 0.85 - 1.0);
+                let whole = outline.winding(p) != 0;
+                assert_eq!(bands.winds(p), whole, "{p:?}");
+                inside += usize::from(whole);
+            }
+        }
+        assert!(inside > 1000 && inside < 121 * 121 - 1000, "{inside}");
     }
 
     #[test]

@@ -135,6 +135,49 @@ pub(crate) struct Bridged {
 /// whole cut-out it must cross (the bridge would leave nothing of it);
 /// the message names the place.
 pub(crate) fn bridge(
+    mut cut: Vec<Shape>,
+    width: f64,
+    every: f64,
+    min_feature: f64,
+    tolerance: f64,
+) -> Result<Bridged> {
+    // Each cut-out is bridged apart, so the two halves of the list (by
+    // points, which the time follows) go on two threads, and the second's
+    // islands are numbered on from the first's: the same as one pass.
+    let points = |shapes: &[Shape]| shapes.iter().flatten().map(Vec::len).sum::<usize>();
+    let half = points(&cut) / 2;
+    let mut seen = 0;
+    let split = cut
+        .iter()
+        .position(|s| {
+            seen += points(std::slice::from_ref(s));
+            seen >= half
+        })
+        .map_or(cut.len(), |k| k + 1);
+    let second = cut.split_off(split);
+    let (first, second) = std::thread::scope(|scope| {
+        let other = scope.spawn(move || bridge_each(second, width, every, min_feature, tolerance));
+        let first = bridge_each(cut, width, every, min_feature, tolerance);
+        let second = other
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e));
+        (first, second)
+    });
+    let (mut out, second) = (first?, second?);
+    let numbered = out.islands.len();
+    out.holes.extend(second.holes);
+    out.islands.extend(second.islands);
+    out.bridges
+        .extend(second.bridges.into_iter().map(|b| Bridge {
+            island: b.island.map(|k| k + numbered),
+            ..b
+        }));
+    out.specks.extend(second.specks);
+    Ok(out)
+}
+
+/// [`bridge`] on one thread, cut-out after cut-out.
+fn bridge_each(
     cut: Vec<Shape>,
     width: f64,
     every: f64,

@@ -31,11 +31,15 @@ use crate::scene::{Pen, Scene};
 /// # Errors
 /// [`Error::Invalid`] (field `input`) when the drawing has no stroke.
 pub fn cutouts(scene: &Scene, min_width: f64, tolerance: f64) -> Result<Region> {
-    cutout_shapes(scene, min_width, tolerance).map(|s| shapes::to_region(&s))
+    cutout_shapes(scene, min_width, tolerance).map(|(s, _)| shapes::to_region(&s))
 }
 
-/// [`cutouts`] as shapes.
-pub(crate) fn cutout_shapes(scene: &Scene, min_width: f64, tolerance: f64) -> Result<Vec<Shape>> {
+/// [`cutouts`] as shapes, and the width of the thinnest stroke cut, mm.
+pub(crate) fn cutout_shapes(
+    scene: &Scene,
+    min_width: f64,
+    tolerance: f64,
+) -> Result<(Vec<Shape>, f64)> {
     // (width in µm, closed) → polylines; a BTreeMap keeps the order fixed.
     let mut groups: BTreeMap<(u64, bool), Vec<Vec<[f64; 2]>>> = BTreeMap::new();
     let page = scene.page_transform();
@@ -68,6 +72,11 @@ pub(crate) fn cutout_shapes(scene: &Scene, min_width: f64, tolerance: f64) -> Re
             "the drawing has no stroke to cut (a stencil is cut from line art)",
         ));
     }
+    // The groups' keys are in order: the first is the thinnest.
+    let thinnest = groups
+        .keys()
+        .next()
+        .map_or(0.0, |&(microns, _)| microns as f64 / 1000.0);
     let strokes: Vec<Shape> = groups
         .into_iter()
         .flat_map(|((microns, closed), lines)| {
@@ -81,11 +90,8 @@ pub(crate) fn cutout_shapes(scene: &Scene, min_width: f64, tolerance: f64) -> Re
         })
         .collect();
     let sheet = Rect::new(0.0, 0.0, scene.page.width, scene.page.height);
-    Ok(shapes::overlay(
-        &strokes,
-        &[shapes::rect(sheet)],
-        OverlayRule::Intersect,
-    ))
+    let cut = shapes::overlay(&strokes, &[shapes::rect(sheet)], OverlayRule::Intersect);
+    Ok((cut, thinnest))
 }
 
 /// The points of one subpath flattened within `tolerance`, without

@@ -21,7 +21,7 @@
 //!
 //! The booleans work on polygons in the boolean library's own form
 //! (`shapes`), one integer sweep each: a full A3 kimono design becomes a
-//! stencil in about a second (BENCHMARKS.md, section 14).
+//! stencil in about two seconds of CPU (BENCHMARKS.md, section 14).
 //!
 //! The result's [`Stencil::cut_scene`] is what the knife cuts (every
 //! boundary of the cut-outs, closed), to be written like any drawing, in
@@ -177,12 +177,24 @@ pub struct Report {
     pub narrow_cuts: Vec<Point>,
     /// Corners sharper than the blade follows.
     pub sharp_corners: Vec<Point>,
+    /// The narrowest feature checked for, mm ([`StencilOptions::min_feature`]).
+    pub min_feature: f64,
+    /// The sharpest corner checked for, degrees
+    /// ([`StencilOptions::min_corner_deg`]).
+    pub min_corner_deg: f64,
+    /// The width of the thinnest stroke cut, mm.
+    pub thinnest_stroke: f64,
 }
 
 impl fmt::Display for Report {
+    /// A line per finding; places listed by their first five, findings
+    /// with none left out (a kimono has thousands of each).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let places = |f: &mut fmt::Formatter<'_>, what: &str, ps: &[Point]| {
-            write!(f, "{} {what}", ps.len())?;
+            if ps.is_empty() {
+                return Ok(());
+            }
+            write!(f, "{} {what}, at", ps.len())?;
             for p in ps.iter().take(5) {
                 write!(f, " ({:.1}, {:.1})", p.x, p.y)?;
             }
@@ -216,23 +228,44 @@ impl fmt::Display for Report {
         if self.islands.len() > LISTED {
             writeln!(f, "  … and {} smaller islands", self.islands.len() - LISTED)?;
         }
-        places(
-            f,
-            "specks of paper narrower than the blade cut away at",
-            &self.specks,
-        )?;
         if self.loose.is_empty() {
             writeln!(f, "the sheet is one piece")?;
         } else {
-            places(f, "parts still fall out at", &self.loose)?;
+            places(f, "parts still fall out", &self.loose)?;
         }
+        let mm = self.min_feature;
         places(
             f,
-            "places of paper narrower than the blade at",
+            &format!("specks of paper narrower than {mm} mm cut away whole"),
+            &self.specks,
+        )?;
+        places(
+            f,
+            &format!(
+                "places where the paper between cut-outs is narrower than {mm} mm and may tear"
+            ),
             &self.narrow_paper,
         )?;
-        places(f, "cut-outs narrower than the blade at", &self.narrow_cuts)?;
-        places(f, "corners sharper than the blade at", &self.sharp_corners)
+        // Most narrow cut-outs are strokes drawn thinner than the blade
+        // leaves: say how thin, once, rather than where each one is.
+        let thin = if self.thinnest_stroke < mm {
+            format!(" (strokes down to {} mm wide)", self.thinnest_stroke)
+        } else {
+            String::new()
+        };
+        places(
+            f,
+            &format!("places where a cut-out is narrower than {mm} mm{thin}"),
+            &self.narrow_cuts,
+        )?;
+        places(
+            f,
+            &format!(
+                "corners sharper than {}° (a drag knife tears the paper's tip there)",
+                self.min_corner_deg
+            ),
+            &self.sharp_corners,
+        )
     }
 }
 
@@ -271,7 +304,7 @@ pub fn make(scene: &Scene, options: &StencilOptions) -> Result<Stencil> {
         ..scene.page
     };
     let paper = vec![shapes::rect(Rect::new(0.0, 0.0, page.width, page.height))];
-    let cut = cutouts::cutout_shapes(scene, min_width, tolerance)?;
+    let (cut, thinnest_stroke) = cutouts::cutout_shapes(scene, min_width, tolerance)?;
     let found = bridges::bridge(
         cut,
         options.bridge,
@@ -317,6 +350,9 @@ pub fn make(scene: &Scene, options: &StencilOptions) -> Result<Stencil> {
         narrow_paper,
         narrow_cuts,
         sharp_corners,
+        min_feature: options.min_feature,
+        min_corner_deg: options.min_corner_deg,
+        thinnest_stroke,
     };
     Ok(Stencil {
         page,
@@ -553,8 +589,19 @@ mod tests {
             .with_bridge_every(0.0);
         let s = make(&drawing(vec![line.clone()]), &options).unwrap();
         assert_eq!(s.report.narrow_cuts.len(), 1, "{}", s.report);
+        // Said once, with how thin the strokes are.
+        let text = s.report.to_string();
+        let line_of =
+            "1 places where a cut-out is narrower than 0.5 mm (strokes down to 0.3 mm wide), at (";
+        assert!(text.contains(line_of), "{text}");
         let s = make(&drawing(vec![line]), &options.with_widen(true)).unwrap();
         assert!(s.report.narrow_cuts.is_empty(), "{}", s.report);
+        // A finding with no place is left out of the report.
+        assert!(
+            !s.report.to_string().contains("narrower than"),
+            "{}",
+            s.report
+        );
     }
 
     #[test]
