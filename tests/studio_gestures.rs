@@ -186,10 +186,11 @@ fn strokes_that_cannot_be_written_leave_the_description_as_it_was() {
 }
 
 /// A zentangle tile that the loop does not fill: every region is the
-/// designer's to choose.
+/// designer's to choose (the paper's loop, a click filling the white
+/// piece it lands in).
 pub(crate) const TILE: &str =
     "version = 1\nseed = 11\n\n[page]\nsize = [109, 109]\nmargin = 10\n\n\
-    [[layers]]\nname = \"tile\"\n\n[[layers.zentangle]]\nid = \"tile\"\nsteps = 0\n\
+    [[layers]]\nname = \"tile\"\n\n[[layers.zentangle]]\nid = \"tile\"\nlook = \"sampler\"\nsteps = 0\n\
     lines = [[[0, 40], [89, 50]]]\n\n[layers.zentangle.region]\n\
     polygon = [[0, 0], [89, 0], [89, 89], [0, 89]]\n";
 

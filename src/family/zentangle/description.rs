@@ -101,13 +101,14 @@ pub struct ZentangleSpec {
     /// largest region is always filled next, no global contrast).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tone: Option<ToneSpec>,
-    /// How sections are filled (default `"sampler"`): `"tangles"`, each section (a
-    /// part of the region the string or the `lines` make) by one tangle,
-    /// chosen by `weights` against its neighbours, whose elements may
-    /// hold one nested tangle each (their seed group's, the same in all
-    /// of them); or `"sampler"`, the paper's loop, where every white piece
-    /// left, however small, gets a pattern of its own.
-    #[serde(default, skip_serializing_if = "Look::is_sampler")]
+    /// How sections are filled (default `"tangles"`): `"tangles"`, each
+    /// section (a part of the region the string or the `lines` make) by
+    /// one tangle, chosen by `weights` against its neighbours, whose
+    /// elements may hold one nested tangle each (their seed group's, the
+    /// same in all of them), as a tangler fills a tile; or `"sampler"`,
+    /// the paper's loop, where every white piece left, however small,
+    /// gets a pattern of its own (the paper's figures).
+    #[serde(default, skip_serializing_if = "Look::is_tangles")]
     pub look: Look,
     /// With `look = "tangles"`: how likely each procedure is to fill a
     /// section, by id (`{ "16" = 3, "17" = 0 }`; ≥ 0, default 1 each).
@@ -165,15 +166,15 @@ pub struct ZentangleSpec {
 #[serde(rename_all = "lowercase")]
 pub enum Look {
     /// One tangle a section, chosen against its neighbours.
+    #[default]
     Tangles,
     /// The paper's loop: a pattern in every white piece.
-    #[default]
     Sampler,
 }
 
 impl Look {
-    fn is_sampler(&self) -> bool {
-        *self == Look::Sampler
+    fn is_tangles(&self) -> bool {
+        *self == Look::Tangles
     }
 }
 

@@ -531,7 +531,8 @@ mod tests {
     /// lines plus the black area (as the pen would hatch it, 0.3 mm
     /// apart).
     fn ink_by_side(table: &str) -> (f64, f64) {
-        let scene = crate::motif::test_scene::scene("zentangle", table);
+        let table = format!("look = \"sampler\"\n{table}");
+        let scene = crate::motif::test_scene::scene("zentangle", &table);
         let width = scene.page.drawable().width();
         let (mut left, mut right) = (0.0, 0.0);
         scene.layers[0]

@@ -15,16 +15,26 @@ use crate::rng::Seed;
 use crate::scene::Scene;
 use crate::spec::{Format, SceneSpec};
 
+/// A zentangle table running the paper's loop unless it names its look:
+/// most of these tests check what the paper says.
+fn paper(table: &str) -> String {
+    if table.contains("look =") {
+        table.to_owned()
+    } else {
+        format!("look = \"sampler\"\n{table}")
+    }
+}
+
 fn text(table: &str) -> String {
-    test_scene::text("zentangle", table)
+    test_scene::text("zentangle", &paper(table))
 }
 
 fn scene(table: &str) -> Scene {
-    test_scene::scene("zentangle", table)
+    test_scene::scene("zentangle", &paper(table))
 }
 
 fn error(table: &str) -> String {
-    test_scene::error("zentangle", table)
+    test_scene::error("zentangle", &paper(table))
 }
 
 /// The procedure each step group drew (`…step-K-pP`).
@@ -162,7 +172,7 @@ fn the_loop_stops_when_no_region_can_take_a_step_and_its_work_is_bounded() {
     // The scene says where it stopped, and draws that many steps.
     let table = "steps = 2000\nprocedures = [17]\n";
     let s = scene(table);
-    let notes = test_scene::notes("zentangle", table);
+    let notes = test_scene::notes("zentangle", &paper(table));
     let stopped = notes[0]
         .split_once("the loop stopped after step ")
         .and_then(|(_, rest)| rest.split_once(' '))
@@ -519,6 +529,12 @@ fn one_tangle_a_section_or_a_sampler() {
     assert!(count(&tangles) <= 3, "{:?}", procedures(&tangles));
     let sampler = scene(&TILE.replace("look = \"tangles\"", "look = \"sampler\""));
     assert!(count(&sampler) > 6, "{:?}", procedures(&sampler));
+    // A table that names no look fills a section with one tangle.
+    let unnamed = test_scene::scene("zentangle", &format!("depth = 0\n{}", TILE.replace("look = \"tangles\"\n", "")));
+    assert_eq!(
+        crate::output::path_dump(&unnamed, 3),
+        crate::output::path_dump(&tangles, 3)
+    );
     assert!(error("look = \"quilt\"\n").contains("look"));
     assert!(error("weights = { \"20\" = 1 }\n").contains("layers[0].zentangle[0].weights.20: names no procedure"));
     assert!(error("depth = 30\n").contains("layers[0].zentangle[0].depth: must be between 0 and 20"));

@@ -25,7 +25,7 @@ use crate::output::{render_png, to_svg, SvgOptions};
 use crate::plot::PlotOptions;
 use crate::scene::{Color, Group, Layer, Node, Pen, Scene, Stats};
 use crate::spec::{
-    Distribution, Draw, LayerSpec, LimitsSpec, MarginSpec, OutputSpec, PageSpec, PaperSize,
+    Distribution, Draw, LayerSpec, LimitsSpec, Look, MarginSpec, OutputSpec, PageSpec, PaperSize,
     PenSpec, PlotSpec, RegionLinesSpec, RegionSpec, RelaxationMethod, SceneSpec, SitesSpec,
     ValidSpec, VoronoiSpec, ZentangleSpec, DEFAULT_CRACK, FORMAT_VERSION,
 };
@@ -561,6 +561,9 @@ fn description(drawing: &Scene, job: &FillJob, pen: u32, layer: &str) -> SceneSp
         id: Some("pattern".into()),
         region,
         steps: job.steps.unwrap_or(50),
+        // Steps, not sections: an outline has no string to split it, and
+        // the paper's loop fills its pieces as the steps go.
+        look: Look::Sampler,
         ..ZentangleSpec::default()
     });
     SceneSpec {
