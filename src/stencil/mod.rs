@@ -190,11 +190,12 @@ impl fmt::Display for Report {
     /// A line per finding; places listed by their first five, findings
     /// with none left out (a kimono has thousands of each).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let places = |f: &mut fmt::Formatter<'_>, what: &str, ps: &[Point]| {
+        // `what` is the finding said of one place and of several.
+        let places = |f: &mut fmt::Formatter<'_>, what: (&str, &str), ps: &[Point]| {
             if ps.is_empty() {
                 return Ok(());
             }
-            write!(f, "{} {what}, at", ps.len())?;
+            write!(f, "{}, at", counted(ps.len(), what.0, what.1))?;
             for p in ps.iter().take(5) {
                 write!(f, " ({:.1}, {:.1})", p.x, p.y)?;
             }
@@ -206,9 +207,9 @@ impl fmt::Display for Report {
         let across_slits = self.bridges.iter().filter(|b| b.island.is_none()).count();
         writeln!(
             f,
-            "{} islands, {} bridges ({across_slits} across long slits)",
-            self.islands.len(),
-            self.bridges.len()
+            "{}, {} ({across_slits} across long slits)",
+            counted(self.islands.len(), "island", "islands"),
+            counted(self.bridges.len(), "bridge", "bridges")
         )?;
         // The largest islands first; a kimono has thousands.
         let mut order: Vec<usize> = (0..self.islands.len()).collect();
@@ -218,31 +219,46 @@ impl fmt::Display for Report {
             let held = self.bridges.iter().filter(|b| b.island == Some(k)).count();
             writeln!(
                 f,
-                "  island {} at ({:.1}, {:.1}) mm, {:.2} mm across: {held} bridges",
+                "  island {} at ({:.1}, {:.1}) mm, {:.2} mm across: {}",
                 k + 1,
                 island.centre.x,
                 island.centre.y,
-                island.across
+                island.across,
+                counted(held, "bridge", "bridges")
             )?;
         }
         if self.islands.len() > LISTED {
-            writeln!(f, "  … and {} smaller islands", self.islands.len() - LISTED)?;
+            let rest = self.islands.len() - LISTED;
+            writeln!(
+                f,
+                "  … and {}",
+                counted(rest, "smaller island", "smaller islands")
+            )?;
         }
         if self.loose.is_empty() {
             writeln!(f, "the sheet is one piece")?;
         } else {
-            places(f, "parts still fall out", &self.loose)?;
+            places(
+                f,
+                ("part still falls out", "parts still fall out"),
+                &self.loose,
+            )?;
         }
         let mm = self.min_feature;
         places(
             f,
-            &format!("specks of paper narrower than {mm} mm cut away whole"),
+            (
+                &format!("speck of paper narrower than {mm} mm cut away whole"),
+                &format!("specks of paper narrower than {mm} mm cut away whole"),
+            ),
             &self.specks,
         )?;
+        let narrow = format!("the paper between cut-outs is narrower than {mm} mm and may tear");
         places(
             f,
-            &format!(
-                "places where the paper between cut-outs is narrower than {mm} mm and may tear"
+            (
+                &format!("place where {narrow}"),
+                &format!("places where {narrow}"),
             ),
             &self.narrow_paper,
         )?;
@@ -253,20 +269,30 @@ impl fmt::Display for Report {
         } else {
             String::new()
         };
+        let narrow = format!("a cut-out is narrower than {mm} mm{thin}");
         places(
             f,
-            &format!("places where a cut-out is narrower than {mm} mm{thin}"),
+            (
+                &format!("place where {narrow}"),
+                &format!("places where {narrow}"),
+            ),
             &self.narrow_cuts,
         )?;
+        let sharp = format!(
+            "sharper than {}° (a drag knife tears the paper's tip there)",
+            self.min_corner_deg
+        );
         places(
             f,
-            &format!(
-                "corners sharper than {}° (a drag knife tears the paper's tip there)",
-                self.min_corner_deg
-            ),
+            (&format!("corner {sharp}"), &format!("corners {sharp}")),
             &self.sharp_corners,
         )
     }
+}
+
+/// `n` and the noun for that many: "1 island", "2 islands".
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
 
 /// How many islands the report lists one by one.
@@ -592,7 +618,7 @@ mod tests {
         // Said once, with how thin the strokes are.
         let text = s.report.to_string();
         let line_of =
-            "1 places where a cut-out is narrower than 0.5 mm (strokes down to 0.3 mm wide), at (";
+            "1 place where a cut-out is narrower than 0.5 mm (strokes down to 0.3 mm wide), at (";
         assert!(text.contains(line_of), "{text}");
         let s = make(&drawing(vec![line]), &options.with_widen(true)).unwrap();
         assert!(s.report.narrow_cuts.is_empty(), "{}", s.report);
