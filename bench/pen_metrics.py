@@ -279,7 +279,10 @@ def in_long_runs(flag, poly, weight, is_closed, min_len):
     wrap = [(f, l) for f, l in zip(first, last)
             if is_closed[poly[f]] and l > f and flag[f] and flag[l] and run[f] != run[l]]
     for f, l in wrap:
-        run[(run == run[l]) & flag] = run[f]
+        # The last run lies within the polyline: relabel there only, so
+        # many closed polylines cost their own length, not the layer's.
+        tail = run[f:l + 1]
+        tail[(tail == run[l]) & flag[f:l + 1]] = run[f]
     length = np.bincount(run[flag], weight[flag], minlength=int(run.max()) + 1)
     out = np.zeros(n, bool)
     out[flag] = length[run[flag]] >= min_len - 1e-9
