@@ -57,8 +57,8 @@ Per layer, and in total:
   come within w of other line work of the layer (a crumb stuck to a line;
   an isolated short mark, a dot, is not debris).
 - `densest_mm2`: the largest length of line (mm) inside one 1 mm × 1 mm
-  cell of a grid aligned to the sheet (each sample's length counted in the
-  cell of its middle), and `densest_solid` = densest_mm2 · w: about 1 when
+  cell of a grid aligned to the sheet (exactly: each segment cut at the
+  cell borders it crosses), and `densest_solid` = densest_mm2 · w: about 1 when
   the cell is solid ink, 2 when it is inked twice over. The totals take
   the largest of the layers'.
 
@@ -249,6 +249,45 @@ def resample(lines, step):
     return points, dirs, weight, poly, t, lengths
 
 
+def cell_lengths(lines):
+    """The length of line inside each CELL_MM cell of the sheet that holds
+    any, exactly: every segment is cut where it crosses a cell border and
+    each piece counted in its own cell. (Counting samples a quarter of a
+    pen long in the cell of their middle, as the other figures sample,
+    misplaces up to half a sample at each border a line crosses: 2.008×
+    solid in a katagami cell that holds 1.927×.)"""
+    pts = np.concatenate(lines) / CELL_MM
+    counts = np.array([len(l) for l in lines])
+    poly_of_pt = np.repeat(np.arange(len(lines)), counts)
+    same = poly_of_pt[:-1] == poly_of_pt[1:]
+    a, b = pts[:-1][same], pts[1:][same]
+    if not len(a):
+        return np.zeros(1)
+    # The segment parameters where each one crosses a vertical or a
+    # horizontal cell border, with 0 and 1, sorted within each segment.
+    ts, segs = [np.zeros(len(a)), np.ones(len(a))], [np.arange(len(a))] * 2
+    for axis in (0, 1):
+        lo, hi = np.minimum(a[:, axis], b[:, axis]), np.maximum(a[:, axis], b[:, axis])
+        first = np.floor(lo) + 1
+        n = np.maximum(0, np.ceil(hi) - first).astype(np.int64)
+        seg = np.repeat(np.arange(len(a)), n)
+        k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)
+        border = first[seg] + k
+        ts.append((border - a[seg, axis]) / (b[seg, axis] - a[seg, axis]))
+        segs.append(seg)
+    t, seg = np.concatenate(ts), np.concatenate(segs)
+    order = np.lexsort((t, seg))
+    t, seg = t[order], seg[order]
+    piece = seg[1:] == seg[:-1]
+    s, t0, t1 = seg[:-1][piece], t[:-1][piece], t[1:][piece]
+    d = b[s] - a[s]
+    length = (t1 - t0) * np.hypot(d[:, 0], d[:, 1]) * CELL_MM
+    mid = a[s] + d * ((t0 + t1) / 2)[:, None]
+    cells = np.floor(mid).astype(np.int64)
+    _, inverse = np.unique(cells, axis=0, return_inverse=True)
+    return np.bincount(inverse.ravel(), length)
+
+
 def distance_to_piece(p, q, dq, hq):
     """Distance from points p to the pieces of line of half length hq and
     direction dq centred on q (debris: how close a crumb comes to a line)."""
@@ -353,9 +392,7 @@ def measure_layer(lines, width, tol_share=0.25, travel_only=False):
         m["debris_pct"] = 100 * m["debris"] / len(lines)
 
     # Density: line length per 1 mm cell of the sheet.
-    cells = np.floor(points / CELL_MM).astype(np.int64)
-    _, inverse = np.unique(cells, axis=0, return_inverse=True)
-    per_cell = np.bincount(inverse.ravel(), weight) / (CELL_MM * CELL_MM)
+    per_cell = cell_lengths(lines) / (CELL_MM * CELL_MM)
     m["densest_mm2"] = float(per_cell.max())
     m["densest_solid"] = m["densest_mm2"] * w
     return m
@@ -489,6 +526,9 @@ def self_test():
         ("ten 1 mm lines in one cell: 10 mm/mm², ×3 solid with 0.3 mm",
          [("1 a", 0.3, hatch)], {}, {"densest_mm2": (10, 1e-4), "densest_solid": (3, 1e-4),
                                      "doubled_pct": (0, 0)}),
+        ("a line across a cell border counts in each cell what lies there (0.9 + 0.1)",
+         [("1 a", 2.0, ["M 10.9 10.5 L 11.9 10.5", "M 30 30 L 30.1 30"])], {},
+         {"densest_mm2": (0.9, 1e-4)}),
         ("pen width from style through viewBox (2 mm a unit): 0.25 → 0.5 mm",
          [("1 a", 0.25, ["M 5 5 L 45 5", "M 25 5.2 L 25 5.3"])], {"scale": 2.0},
          {"pen_down_mm": (80.2, 1e-4), "debris": (1, 0), "pen_up_mm": (math.hypot(10, 10) + math.hypot(40, 0.4), 1e-4)}),
