@@ -30,6 +30,7 @@ fn style(paint: &PaintSpec, palette: &Palette) -> Style {
         fill: paint.color(palette),
         hatch: paint.hatch,
         fill_only: false,
+        edge_drawn: false,
         mask: false,
     }
 }

@@ -89,39 +89,47 @@ pub fn run(scene: &mut Scene, options: &DedupeOptions) {
 /// within `tolerance`, for a pen `width` wide (see the module
 /// documentation).
 pub fn dedupe(paths: Vec<StyledPath>, tolerance: f64, width: f64) -> Vec<StyledPath> {
-    let rules = Rules {
-        tolerance,
-        inside: 2.0 * width,
-        at_end: tolerance,
-    };
     let found = find(
         paths.iter().map(|p| (&p.path, p.style.fill.is_some())),
-        rules,
+        Rules::for_pen(tolerance, width),
     );
     paths
         .into_iter()
         .enumerate()
         .filter_map(|(i, mut p)| {
-            let subs = found.of_path(i);
-            if subs.iter().all(|s| found.cuts[*s].is_empty()) {
-                return Some(p);
-            }
-            let mut out = BezPath::new();
-            for (sub, j) in subpaths(&p.path).zip(subs) {
-                let cuts = &found.cuts[j];
-                if cuts.is_empty() {
-                    out.extend(sub.elements());
-                    continue;
-                }
-                let pieces = &found.subs[j].pieces;
-                let kept = complement(cuts, pieces.len());
-                pieces.cut(&kept, &mut out);
-            }
-            if out.elements().is_empty() {
-                return None;
-            }
-            p.path = out;
+            p.path = found.kept(i, p.path, 0.0)?;
             Some(p)
+        })
+        .collect()
+}
+
+/// The parts of `paths` that do not lie on the line work of `drawn`,
+/// which is never cut, nor on each other's, by the rules of [`dedupe`],
+/// less pieces left between cuts shorter than the pen is wide (the ink
+/// of the lines they lie between already covers them):
+/// the line a generator still has to draw along an edge that its other
+/// lines draw in places (a zentangle's black part), in the order of
+/// `paths`; `None` where nothing is left.
+pub(crate) fn beside(
+    drawn: &[BezPath],
+    paths: Vec<BezPath>,
+    tolerance: f64,
+    width: f64,
+) -> Vec<Option<BezPath>> {
+    let found = find(
+        drawn
+            .iter()
+            .map(|p| (p, true))
+            .chain(paths.iter().map(|p| (p, false))),
+        Rules::for_pen(tolerance, width),
+    );
+    paths
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            found
+                .kept(drawn.len() + i, p, width)
+                .filter(|p| !p.elements().is_empty())
         })
         .collect()
 }
@@ -175,9 +183,27 @@ struct Found {
 }
 
 impl Found {
-    /// The numbers of path `i`'s subpaths.
-    fn of_path(&self, i: usize) -> Vec<usize> {
-        (self.first[i]..self.first[i + 1]).collect()
+    /// What is left of path `i`, `path`, once its cuts are made, less the
+    /// pieces left between cuts that are shorter than `shortest`: the
+    /// path itself when nothing is cut, `None` when everything is.
+    fn kept(&self, i: usize, path: BezPath, shortest: f64) -> Option<BezPath> {
+        let subs = self.first[i]..self.first[i + 1];
+        if subs.clone().all(|s| self.cuts[s].is_empty()) {
+            return Some(path);
+        }
+        let mut out = BezPath::new();
+        for (sub, j) in subpaths(&path).zip(subs) {
+            let cuts = &self.cuts[j];
+            if cuts.is_empty() {
+                out.extend(sub.elements());
+                continue;
+            }
+            let pieces = &self.subs[j].pieces;
+            let mut kept = complement(cuts, pieces.len());
+            drop_short(&mut kept, pieces.len(), pieces.closed, shortest);
+            pieces.cut(&kept, &mut out);
+        }
+        (!out.elements().is_empty()).then_some(out)
     }
 }
 
@@ -288,6 +314,15 @@ fn find<'a>(paths: impl Iterator<Item = (&'a BezPath, bool)>, rules: Rules) -> F
 }
 
 impl Rules {
+    /// The rules of [`dedupe`] for a pen `width` wide.
+    fn for_pen(tolerance: f64, width: f64) -> Rules {
+        Rules {
+            tolerance,
+            inside: 2.0 * width,
+            at_end: tolerance,
+        }
+    }
+
     /// Of the covered `runs` of the subpath `pieces` (any order, joined
     /// here), the ones to cut. Runs less than two tolerances apart are one
     /// run (where a copy turns a corner beside the original, the bit of it
@@ -326,6 +361,30 @@ impl Rules {
     }
 }
 
+/// `runs` (sorted, apart, along a subpath `total` long) without those
+/// shorter than `shortest`; on a `closed` subpath a run through its start
+/// counts whole.
+fn drop_short(runs: &mut Vec<(f64, f64)>, total: f64, closed: bool, shortest: f64) {
+    if shortest <= 0.0 || runs.is_empty() {
+        return;
+    }
+    let eps = 1e-9 * (1.0 + total);
+    let n = runs.len();
+    let wraps = closed && n > 1 && runs[0].0 <= eps && runs[n - 1].1 >= total - eps;
+    let through_start = if wraps {
+        (runs[n - 1].1 - runs[n - 1].0) + (runs[0].1 - runs[0].0)
+    } else {
+        0.0
+    };
+    let mut k = 0;
+    runs.retain(|&(lo, hi)| {
+        let end = k == 0 || k == n - 1;
+        k += 1;
+        let length = if wraps && end { through_start } else { hi - lo };
+        length >= shortest
+    });
+}
+
 /// Whether `s` lies in one of `runs`.
 fn inside(runs: &[(f64, f64)], s: f64) -> bool {
     runs.iter().any(|&(lo, hi)| lo <= s && s <= hi)
@@ -351,7 +410,7 @@ fn complement(cuts: &[(f64, f64)], total: f64) -> Vec<(f64, f64)> {
 
 #[cfg(test)]
 mod tests {
-    use kurbo::{Circle, Point, Shape};
+    use kurbo::{Circle, ParamCurveNearest, Point, Rect, Shape};
     use proptest::prelude::*;
 
     use super::*;
@@ -560,6 +619,41 @@ mod tests {
             .count();
         assert_eq!(moves, 1, "{:?}", sq.path);
         assert!((length(std::slice::from_ref(sq)) - 30.0).abs() < 0.01);
+    }
+
+    #[test]
+    fn beside_drawn_lines_only_the_bare_stretches_are_left() {
+        // A 10 mm square whose top and right sides are lines already
+        // drawn (the right one in two, 0.2 mm apart: a gap the lines' ink
+        // covers): what is left of the square is its bottom and left
+        // sides, one stroke round the corner.
+        let square = Rect::new(0.0, 0.0, 10.0, 10.0).to_path(0.0);
+        let drawn = [
+            line("t", &[(0.0, 0.0), (10.0, 0.0)]).path,
+            line("r", &[(10.0, 0.0), (10.0, 4.9)]).path,
+            line("r", &[(10.0, 5.1), (10.0, 10.0)]).path,
+        ];
+        let left = beside(&drawn, vec![square, BezPath::new()], 0.075, 0.3);
+        assert_eq!(left.len(), 2);
+        assert!(left[1].is_none());
+        let bare = left[0].as_ref().unwrap();
+        assert_eq!(subpaths(bare).count(), 1);
+        assert!(
+            (bare.perimeter(0.01) - 20.0).abs() < 1e-6,
+            "{}",
+            bare.perimeter(0.01)
+        );
+        for p in [
+            Point::new(0.0, 5.0),
+            Point::new(5.0, 10.0),
+            Point::new(0.0, 10.0),
+        ] {
+            let d = bare
+                .segments()
+                .map(|s| s.nearest(p, 1e-9).distance_sq)
+                .fold(f64::MAX, f64::min);
+            assert!(d < 1e-12, "{p:?} not on what is left");
+        }
     }
 
     #[test]

@@ -443,7 +443,9 @@ fn hatch_direction(polygons: &[Vec<Point>], angle_deg: f64, spacing: f64) -> Res
 /// layer's pen inside the outline, are added right after it in the same
 /// group, with ids `<id>.hatch-<k>`, drawn by the same pen. A
 /// [fill-only](Style::fill_only) path (paint whose outline no pen draws)
-/// is hatched to its edge and becomes a [mask](Style::mask): it still
+/// is hatched to its edge — or as clear of it as of an outline when other
+/// line work draws it ([`Style::edge_drawn`]) — and becomes a
+/// [mask](Style::mask): it still
 /// hides what lies behind it, and is drawn no more than before. A path whose
 /// [`Style::hatch`] gives its own spacing is hatched at that spacing (the
 /// other options as given). Spacing, inset and angle are measured on the
@@ -530,13 +532,18 @@ fn hatch_group(
                 };
                 p.style.hatch = None;
                 // Paint that no pen outlines (an imported shape with an
-                // invisible stroke) has no outline to keep clear of; its
-                // colour becomes the lines, and what is left of it only
-                // hides what lies behind it, as the paint did.
+                // invisible stroke) has no outline to keep clear of,
+                // unless other line work draws its edge; its colour
+                // becomes the lines, and what is left of it only hides
+                // what lies behind it, as the paint did.
                 let clearance = if p.style.fill_only {
                     p.style.fill_only = false;
                     p.style.mask = true;
-                    0.0
+                    if p.style.edge_drawn {
+                        clearance
+                    } else {
+                        0.0
+                    }
                 } else {
                     clearance
                 };
@@ -802,48 +809,61 @@ mod tests {
 
     #[test]
     fn paint_no_pen_outlines_is_hatched_to_its_edge_and_still_hides() {
-        let mut g = Group::new("g");
-        g.push_path(
-            "paint",
-            Rect::new(0.0, 0.0, 10.0, 10.0).to_path(0.0),
-            Style {
-                fill: Some(Color::BLACK),
-                fill_only: true,
-                ..Style::default()
-            },
-        );
-        let mut scene = Scene::one_pen(
-            Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
-            g,
-        );
-        let o = HatchOptions::DEFAULT
-            .with_angle_deg(0.0)
-            .with_spacing(1.0)
-            .with_inset(0.5);
-        run(&mut scene, &o).unwrap();
-        let mut found = Vec::new();
-        scene.visit_paths(|_, p, t| {
-            let page = t * p.path.clone();
-            let s = page.segments().next().unwrap();
-            found.push((p.id.clone(), p.style.clone(), (s.end() - s.start()).hypot()));
-        });
-        // No outline is drawn to keep clear of: the lines stop at the
-        // inset alone, 9 mm long.
-        assert!(found.len() >= 2, "{found:?}");
-        for (id, style, length) in &found[1..] {
-            assert!(id.starts_with("paint.hatch-") && style.is_drawn(), "{id}");
-            assert!((length - 9.0).abs() < 1e-6, "{id}: {length}");
-        }
-        // The paint is now a mask: nothing to draw, an area that hides.
-        let (id, style, _) = &found[0];
-        assert_eq!(id, "paint");
-        assert_eq!(
-            *style,
-            Style {
-                mask: true,
-                ..Style::default()
+        // Paint whose edge no line draws is hatched up to the inset; paint
+        // whose edge other line work draws keeps clear of it as of an
+        // outline.
+        for edge_drawn in [false, true] {
+            let mut g = Group::new("g");
+            g.push_path(
+                "paint",
+                Rect::new(0.0, 0.0, 10.0, 10.0).to_path(0.0),
+                Style {
+                    fill: Some(Color::BLACK),
+                    fill_only: true,
+                    edge_drawn,
+                    ..Style::default()
+                },
+            );
+            let mut scene = Scene::one_pen(
+                Page::named(PaperName::A5, Orientation::Portrait, Margins::uniform(10.0)),
+                g,
+            );
+            let clear = if edge_drawn {
+                OUTLINE_CLEARANCE * scene.pen_width(1)
+            } else {
+                0.0
+            };
+            let o = HatchOptions::DEFAULT
+                .with_angle_deg(0.0)
+                .with_spacing(1.0)
+                .with_inset(0.5);
+            run(&mut scene, &o).unwrap();
+            let mut found = Vec::new();
+            scene.visit_paths(|_, p, t| {
+                let page = t * p.path.clone();
+                let s = page.segments().next().unwrap();
+                found.push((p.id.clone(), p.style.clone(), (s.end() - s.start()).hypot()));
+            });
+            // The lines stop at the inset (and the clearance), 9 mm long
+            // less the clearance at each end.
+            assert!(found.len() >= 2, "{found:?}");
+            for (id, style, length) in &found[1..] {
+                assert!(id.starts_with("paint.hatch-") && style.is_drawn(), "{id}");
+                let want = 9.0 - 2.0 * clear;
+                assert!((length - want).abs() < 1e-6, "{id}: {length}, not {want}");
             }
-        );
+            // The paint is now a mask: nothing to draw, an area that hides.
+            let (id, style, _) = &found[0];
+            assert_eq!(id, "paint");
+            assert_eq!(
+                *style,
+                Style {
+                    mask: true,
+                    edge_drawn,
+                    ..Style::default()
+                }
+            );
+        }
     }
 
     #[test]

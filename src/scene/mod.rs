@@ -63,6 +63,12 @@ pub struct Style {
     /// HPGL, stats) leave it out; the area still hides what lies behind
     /// it in hidden-line removal.
     pub fill_only: bool,
+    /// The edge of this [fill-only](Style::fill_only) paint is drawn by
+    /// other line work of the same pen (a zentangle's black part, whose
+    /// every edge is the line of a mark): hatching keeps as clear of the
+    /// edge as it keeps of a drawn outline ([`crate::plot::hatch`]), where
+    /// paint with no line at its edge is hatched right up to it.
+    pub edge_drawn: bool,
     /// Never drawn, by a pen or in the preview: the area the path encloses
     /// (non-zero) only hides what lies behind it in hidden-line removal
     /// ([`crate::plot::occlude`]), for a solid shape that its generator

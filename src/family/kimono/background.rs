@@ -396,6 +396,7 @@ fn paint_style(paint: &PaintSpec, palette: &Palette) -> Style {
         fill: paint.color(palette),
         hatch: paint.hatch,
         fill_only: false,
+        edge_drawn: false,
         mask: false,
     }
 }
@@ -407,6 +408,7 @@ fn solid_style(paint: &PaintSpec, palette: &Palette) -> Style {
         fill: style.fill.or(Some(SOLID_GREY)),
         hatch: style.hatch.or(Some(SOLID_HATCH)),
         fill_only: false,
+        edge_drawn: false,
         mask: false,
     }
 }

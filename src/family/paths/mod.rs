@@ -43,6 +43,7 @@ pub(super) fn build(spec: &PathsSpec, group_id: &str, cx: &mut Context<'_>) -> R
         fill: spec.paint.color(cx.palette()),
         hatch: spec.paint.hatch,
         fill_only: false,
+        edge_drawn: false,
         mask: false,
     };
     let shape = Affine::rotate(spec.rotate.to_radians())

@@ -15,11 +15,15 @@
 //!   visible lines, the white pieces left and the black area;
 //! - `tile`: the border and the string, and the sections they leave;
 //! - `filling`: the loop;
-//! - `ink`: the ink per square millimetre the loop may not pass.
+//! - `ink`: the ink per square millimetre the loop may not pass;
+//! - `edges`: the stretches of a hatched black part's edge that no line
+//!   draws.
 //!
 //! Each step is a group `<layer>.<table>.step-K-pP` (step K drew
-//! procedure P; `step-K-printemps` for a named tangle) of its lines (`line-I`) and black parts (`black-I`,
-//! hatched or filled as `black` says); `step-0-lines` holds the
+//! procedure P; `step-K-printemps` for a named tangle) of its lines
+//! (`line-I`) and black parts (`black-I`, hatched or filled as `black`
+//! says; a hatched part's edge is drawn by the lines, and where none runs
+//! by `black-I.edge`); `step-0-lines` holds the
 //! description's own `lines` and an inked string; `border` the border's
 //! lines, one closed path per contour.
 
@@ -28,6 +32,7 @@ pub(crate) mod description;
 mod gesture;
 mod choice;
 mod compose;
+mod edges;
 mod element;
 pub(crate) mod ffd;
 mod filling;
@@ -190,6 +195,8 @@ pub(super) fn build(spec: &ZentangleSpec, group_id: &str, cx: &mut Context<'_>) 
     }
     steps.by_hand(true, &mut filling, &mut rng, cx)?;
     let k = steps.k;
+    let drawn = edges::draw_bare_edges(&mut group, pen);
+    cx.take_paths(drawn, || format!("zentangle {group_id} black edges"))?;
     let stop = stopped.map_or_else(String::new, |(at, n)| {
         format!(
             "; the loop stopped after step {at} ({n} of the {} steps asked for): no white \
@@ -277,11 +284,17 @@ fn emit(
         format!("zentangle {id}")
     })?;
     let mut part = Group::new(&id);
+    // A hatched black part's edge is the line of the mark that painted it
+    // or of a later mark over it, drawn among the step's lines: the part
+    // itself is paint whose hatch keeps clear of that line, so its edge is
+    // drawn once. A solid part keeps its closed outline (a cutter's cut).
+    let hatched = spec.black == Black::Hatch;
     for (i, region) in step.black.into_iter().enumerate() {
         let style = Style {
             fill: Some(Color::BLACK),
-            hatch: (spec.black == Black::Hatch).then_some(spec.hatch),
-            fill_only: false,
+            hatch: hatched.then_some(spec.hatch),
+            fill_only: hatched,
+            edge_drawn: hatched,
             mask: false,
         };
         part.push_path(format!("{id}.black-{i}"), region.into_path(), style);

@@ -540,3 +540,109 @@ fn one_tangle_a_section_or_a_sampler() {
     assert!(error("depth = 30\n").contains("layers[0].zentangle[0].depth: must be between 0 and 20"));
     assert!(error(&TILE.replace("corner = 5", "corner = 45")).contains("layers[0].zentangle[0].border.corner"));
 }
+
+#[test]
+fn a_hatched_black_part_is_outlined_once_by_lines_not_by_itself() {
+    // Procedure 13's black squares and bands, reaching the tile's edge
+    // where no border is drawn.
+    let s = scene("steps = 4\nprocedures = [13]\nwobble = 0\nelements = [\"msq2\"]\n");
+    let pen = s.pen_width(1);
+    let (mut black, mut lines, mut edges) = (Vec::new(), Vec::new(), Vec::new());
+    s.visit_paths(|_, p, t| {
+        let path = t * p.path.clone();
+        if p.style.fill.is_some() {
+            // Paint whose hatch keeps clear of an edge the lines draw.
+            assert!(p.style.fill_only && p.style.edge_drawn, "{}", p.id);
+            black.push(path);
+        } else if p.id.ends_with(".edge") {
+            edges.push(path);
+        } else {
+            lines.push(path);
+        }
+    });
+    assert!(black.len() >= 5 && !edges.is_empty(), "{} black parts", black.len());
+    // Every stretch of every black part's edge lies on a line, of a mark
+    // or of the part's own bare edge.
+    let drawn: Vec<BezPath> = lines.iter().chain(&edges).cloned().collect();
+    let near = Near::new(&drawn);
+    let samples: Vec<Point> = black.iter().flat_map(|b| along(b, 0.1)).collect();
+    let bare = samples.iter().filter(|&&p| near.distance(p) > pen / 4.0).count();
+    assert!(
+        bare * 1000 <= samples.len(),
+        "{bare} of {} points of black edges lie on no line",
+        samples.len()
+    );
+    // Without the parts' own edges, the tile's edge is bare where black
+    // meets it: the edges are needed.
+    let marks_only = Near::new(&lines);
+    let bare = samples.iter().filter(|&&p| marks_only.distance(p) > pen / 4.0).count();
+    assert!(bare * 50 >= samples.len(), "{bare} of {}", samples.len());
+    // And no stretch of an edge runs along a mark's line: the edges add
+    // no line drawn twice.
+    let doubled = |paths: &[BezPath]| {
+        crate::plot::dedupe::doubled_length(paths, pen / 4.0, 2.0 * pen)
+    };
+    let (with, without) = (doubled(&drawn), doubled(&lines));
+    let edge_length: f64 = edges.iter().map(|e| kurbo::Shape::perimeter(e, 0.01)).sum();
+    assert!(
+        with - without <= 0.02 * edge_length,
+        "{with} mm doubled with the {edge_length} mm of edges, {without} without"
+    );
+}
+
+/// Points along `path` at most `step` mm apart.
+fn along(path: &BezPath, step: f64) -> Vec<Point> {
+    let mut out = Vec::new();
+    let (mut start, mut last) = (Point::ZERO, Point::ZERO);
+    kurbo::flatten(path.iter(), 0.01, |el| {
+        let to = match el {
+            PathEl::MoveTo(p) => {
+                out.push(p);
+                (start, last) = (p, p);
+                return;
+            }
+            PathEl::LineTo(p) => p,
+            PathEl::ClosePath => start,
+            _ => return,
+        };
+        let n = (last.distance(to) / step).ceil().max(1.0) as usize;
+        out.extend((1..=n).map(|k| last.lerp(to, k as f64 / n as f64)));
+        last = to;
+    });
+    out
+}
+
+/// The distance to a set of paths' flattened segments, through a grid of
+/// 1 mm cells.
+struct Near {
+    cells: std::collections::HashMap<(i64, i64), Vec<(Point, Point)>>,
+}
+
+impl Near {
+    fn new(paths: &[BezPath]) -> Near {
+        let mut cells: std::collections::HashMap<_, Vec<_>> = Default::default();
+        for path in paths {
+            let pts = along(path, 0.5);
+            for w in pts.windows(2) {
+                let mid = w[0].midpoint(w[1]);
+                let key = (mid.x.floor() as i64, mid.y.floor() as i64);
+                cells.entry(key).or_default().push((w[0], w[1]));
+            }
+        }
+        Near { cells }
+    }
+
+    fn distance(&self, p: Point) -> f64 {
+        let (cx, cy) = (p.x.floor() as i64, p.y.floor() as i64);
+        let mut best = f64::INFINITY;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for &(a, b) in self.cells.get(&(cx + dx, cy + dy)).into_iter().flatten() {
+                    use kurbo::ParamCurveNearest;
+                    best = best.min(kurbo::Line::new(a, b).nearest(p, 1e-9).distance_sq.sqrt());
+                }
+            }
+        }
+        best
+    }
+}
