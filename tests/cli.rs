@@ -895,3 +895,35 @@ fn render_and_stats_agree_on_what_was_written() {
         assert_eq!(mm, format!("{read:.0}"), "{template}: {said}, stats {read}");
     }
 }
+
+/// `moyo new` writes a description and the images it reads all or none:
+/// where an image cannot go, the description is not written either, and
+/// the folders made for the images go again.
+#[test]
+fn new_writes_all_its_files_or_none() {
+    let dir = tempdir();
+    fs::create_dir(dir.path().join("mine")).unwrap();
+    fs::write(dir.path().join("mine/images"), "a file, not a folder").unwrap();
+    moyo(&dir)
+        .args(["new", "stipple-portrait", "-o", "mine/p.toml"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("images"));
+    assert_eq!(
+        entries(&dir.path().join("mine")),
+        BTreeSet::from(["images".to_string()])
+    );
+    // The description's own name taken by a folder: the images folder
+    // made for it is taken away again.
+    fs::create_dir(dir.path().join("other")).unwrap();
+    fs::create_dir(dir.path().join("other/p.toml")).unwrap();
+    moyo(&dir)
+        .args(["new", "stipple-portrait", "-o", "other/p.toml"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("a folder, not a file"));
+    assert_eq!(
+        entries(&dir.path().join("other")),
+        BTreeSet::from(["p.toml".to_string()])
+    );
+}
