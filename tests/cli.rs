@@ -902,28 +902,28 @@ fn render_and_stats_agree_on_what_was_written() {
 #[test]
 fn new_writes_all_its_files_or_none() {
     let dir = tempdir();
-    fs::create_dir(dir.path().join("mine")).unwrap();
-    fs::write(dir.path().join("mine/images"), "a file, not a folder").unwrap();
-    moyo(&dir)
-        .args(["new", "stipple-portrait", "-o", "mine/p.toml"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("images"));
-    assert_eq!(
-        entries(&dir.path().join("mine")),
-        BTreeSet::from(["images".to_string()])
-    );
-    // The description's own name taken by a folder: the images folder
-    // made for it is taken away again.
-    fs::create_dir(dir.path().join("other")).unwrap();
-    fs::create_dir(dir.path().join("other/p.toml")).unwrap();
-    moyo(&dir)
-        .args(["new", "stipple-portrait", "-o", "other/p.toml"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("a folder, not a file"));
-    assert_eq!(
-        entries(&dir.path().join("other")),
-        BTreeSet::from(["p.toml".to_string()])
-    );
+    // An image's folder taken by a file; the description's own name taken
+    // by a folder (the images folder made for it goes again).
+    for (folder, taken, a_folder, message) in [
+        ("mine", "images", false, "images"),
+        ("other", "p.toml", true, "a folder, not a file"),
+    ] {
+        let place = dir.path().join(folder);
+        fs::create_dir(&place).unwrap();
+        if a_folder {
+            fs::create_dir(place.join(taken)).unwrap();
+        } else {
+            fs::write(place.join(taken), "a file, not a folder").unwrap();
+        }
+        moyo(&dir)
+            .args(["new", "stipple-portrait", "-o", &format!("{folder}/p.toml")])
+            .assert()
+            .failure()
+            .stderr(predicate::str::contains(message));
+        assert_eq!(
+            entries(&place),
+            BTreeSet::from([taken.to_string()]),
+            "{folder}"
+        );
+    }
 }
