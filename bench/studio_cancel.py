@@ -55,23 +55,23 @@ def zentangle():
     path = os.path.join(ROOT, "tests", "data", "hostile",
                         "zentangle-5000-steps-at-scale-0.05.toml")
     text = open(path).read()
-    return text.replace("steps = 5000", "steps = 150").replace("scale = 0.05", "scale = 0.1")
+    return text.replace("scale = 0.05", "scale = 0.35")
 
 
 FORMULA = "+".join(["u"] * 100)[:199]
 
 HEAVY = {
-    "relax: 2,000 sites, 400 steps": """version = 1
+    "relax: 9,000 sites, 110 steps": """version = 1
 [page]
 size = "A5"
 [[layers]]
 name = "cells"
 [[layers.voronoi]]
 id = "heavy"
-relax = 400
+relax = 110
 [layers.voronoi.sites]
 distribution = "uniform"
-count = 2000
+count = 9000
 """,
     "formula: Poisson sites 0.3 mm apart by a 199-character formula, A4": f"""version = 1
 [limits]
@@ -87,7 +87,7 @@ distribution = "poisson"
 spacing = 0.3
 density = "{FORMULA}"
 """,
-    "zentangle: 150 steps at scale 0.1, A4": zentangle(),
+    "zentangle: 5,000 steps at scale 0.35, smallest 0.2, A4": zentangle(),
     "lsystem: the Hilbert curve at 11 iterations": hilbert(11),
 }
 

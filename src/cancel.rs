@@ -13,9 +13,11 @@
 //! into an error the render returns, like a cancellation, rather than an
 //! allocation that fails and aborts the process (a `GlobalAlloc` cannot
 //! fail cleanly: Rust aborts on a failed allocation). What is counted is
-//! the process's resident memory, read from the system at most every
-//! [`PROBE_EVERY`]: the studio's whole footprint, which is what the
-//! machine runs out of. The limit of one allocation is not this
+//! the process's peak resident memory since the flag was made (the
+//! system's high-water mark, reset then), read at most every
+//! [`PROBE_EVERY`] and at the end of each stage: the studio's whole
+//! footprint, which is what the machine runs out of, with the peaks
+//! between two reads. The limit of one allocation is not this
 //! module's: the budgets of `spec/` bound every table before it is
 //! built.
 
@@ -56,9 +58,11 @@ impl Cancel {
     }
 
     /// A flag that also calls the work off when the process's resident
-    /// memory passes `bytes` ([`Error::MemoryBudget`]). Where the system
-    /// does not say (not Linux), there is no memory budget.
+    /// memory passes `bytes` ([`Error::MemoryBudget`]), at its peak from
+    /// now on. Where the system does not say (not Linux), there is no
+    /// memory budget.
     pub fn with_memory_limit(bytes: u64) -> Cancel {
+        reset_peak();
         Cancel(Arc::new(Flag {
             memory: Some(bytes),
             ..Flag::default()
@@ -79,26 +83,36 @@ impl Cancel {
     /// [`Error::MemoryBudget`] when the process holds more memory than
     /// the budget.
     pub(crate) fn check(&self) -> Result<()> {
+        self.check_with(false)
+    }
+
+    /// [`Cancel::check`] reading the memory whenever it was last read:
+    /// for the end of a stage, after which nothing may read it again.
+    pub(crate) fn check_now(&self) -> Result<()> {
+        self.check_with(true)
+    }
+
+    fn check_with(&self, now: bool) -> Result<()> {
         if self.is_raised() {
             return Err(Error::Cancelled);
         }
         match self.0.memory {
-            Some(limit) => self.check_memory(limit),
+            Some(limit) => self.check_memory(limit, now),
             None => Ok(()),
         }
     }
 
-    fn check_memory(&self, limit: u64) -> Result<()> {
+    fn check_memory(&self, limit: u64, force: bool) -> Result<()> {
         let start = *self.0.start.get_or_init(Instant::now);
         let now = u64::try_from(start.elapsed().as_nanos()).unwrap_or(u64::MAX);
         let last = self.0.probed.load(Ordering::Relaxed);
         // The first check reads at once (`probed` starts at 0, `now` may
         // be too); later ones once per PROBE_EVERY.
-        if last != 0 && now.saturating_sub(last) < PROBE_EVERY.as_nanos() as u64 {
+        if !force && last != 0 && now.saturating_sub(last) < PROBE_EVERY.as_nanos() as u64 {
             return Ok(());
         }
         self.0.probed.store(now.max(1), Ordering::Relaxed);
-        match resident_bytes() {
+        match peak_resident_bytes() {
             Some(resident) if resident > limit => Err(Error::MemoryBudget {
                 limit_mb: limit / MB,
                 resident_mb: resident / MB,
@@ -146,13 +160,30 @@ pub(crate) fn checkpoint() -> Result<()> {
     })
 }
 
-/// The process's resident memory, in bytes, where the system says
-/// (Linux's `/proc/self/status`, `VmRSS`, in kB: no page size to know).
-pub(crate) fn resident_bytes() -> Option<u64> {
+/// Whether the work on this thread was called off (its flag raised; the
+/// memory is not read): for a loop that cannot return an error, which
+/// stops early instead — its output is thrown away, as the work checks
+/// its flag ([`Cancel::check`]) after it.
+pub(crate) fn called_off() -> bool {
+    CURRENT.with(|c| c.borrow().as_ref().is_some_and(Cancel::is_raised))
+}
+
+/// The process's peak resident memory, in bytes, since it started or
+/// since [`reset_peak`], where the system says (Linux's
+/// `/proc/self/status`, `VmHWM`, in kB: no page size to know).
+pub(crate) fn peak_resident_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb.saturating_mul(1024))
+}
+
+/// Starts the peak of [`peak_resident_bytes`] again from what the process
+/// holds now (`5` written to `/proc/self/clear_refs`, Linux 4.0 on); where
+/// that cannot be done, the peak counts from the start.
+fn reset_peak() {
+    // Without it the budget is stricter, never looser: nothing to report.
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
 }
 
 #[cfg(test)]
@@ -176,21 +207,20 @@ mod tests {
 
     #[test]
     fn past_the_memory_budget_the_work_stops_with_its_figures() {
-        let Some(resident) = resident_bytes() else {
+        let Some(resident) = peak_resident_bytes() else {
             return;
         };
+        // Any process holds more than a MiB.
         assert!(resident > MB, "{resident}");
-        let tight = Cancel::with_memory_limit(resident / 2);
+        let tight = Cancel::with_memory_limit(MB);
         match tight.check() {
             Err(Error::MemoryBudget {
                 limit_mb,
                 resident_mb,
-            }) => {
-                assert_eq!(limit_mb, resident / 2 / MB);
-                assert!(resident_mb >= limit_mb);
-            }
+            }) => assert!(limit_mb == 1 && resident_mb >= 1, "{resident_mb}"),
             other => panic!("{other:?}"),
         }
-        assert!(Cancel::with_memory_limit(u64::MAX).check().is_ok());
+        let roomy = Cancel::with_memory_limit(u64::MAX);
+        assert!(roomy.check().is_ok() && roomy.check_now().is_ok());
     }
 }

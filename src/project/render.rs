@@ -313,6 +313,9 @@ fn render_through(
     cancel.check()?;
     let options = svg_options(spec);
     let svg = to_svg(&scene, &options);
+    // Written in full unless the render was called off meanwhile; and the
+    // memory's peak so far read, whenever it was last.
+    cancel.check_now()?;
     Ok(Rendered {
         scene,
         svg,

@@ -211,6 +211,9 @@ impl Session {
     }
 
     fn render(&self, text: &str, cancel: &Cancel) -> Result<Good> {
+        // The preview's SVG, written after the render, stops too when a
+        // newer edit comes (`apply` then throws it away).
+        let _entered = cancel.enter();
         let spec = ValidSpec::parse(text, Format::Toml)?;
         let library = load_motifs_with(&spec, &|name| match self.folder.resolve(name, name) {
             // Regular files only: a FIFO the description names would hold
@@ -235,6 +238,9 @@ impl Session {
         })?;
         let rendered = render_for_editing(&spec, &library, &mut |_| {}, cancel)?;
         let preview = rendered.preview_svg();
+        // The preview written in full, and the memory's peak within the
+        // budget, to the end.
+        cancel.check_now()?;
         // Written by moyo a moment ago, so it reads back.
         let value = toml::from_str(&spec.to_toml())
             .unwrap_or_else(|_| toml::Value::Table(toml::Table::new()));
