@@ -101,6 +101,19 @@ pub enum Error {
     /// studio made it stale); nothing is wrong with the input.
     #[error("cancelled: a newer request replaced this one")]
     Cancelled,
+    /// The work was called off because the process held more memory than
+    /// its budget (the studio's `--memory-mb`): the description asks for
+    /// more than this machine was told to give a render.
+    #[error(
+        "memory budget exceeded: the render held {resident_mb} MB, past the budget of \
+         {limit_mb} MB (lower the counts, iterations, steps or relax of the last edit)"
+    )]
+    MemoryBudget {
+        /// The budget, in MiB.
+        limit_mb: u64,
+        /// The resident memory when it was found past the budget, in MiB.
+        resident_mb: u64,
+    },
     /// No built-in template has this name.
     #[error("unknown template '{name}' (available: {available})")]
     UnknownTemplate {

@@ -895,3 +895,35 @@ fn render_and_stats_agree_on_what_was_written() {
         assert_eq!(mm, format!("{read:.0}"), "{template}: {said}, stats {read}");
     }
 }
+
+/// `moyo new` writes a description and the images it reads all or none:
+/// where an image cannot go, the description is not written either, and
+/// the folders made for the images go again.
+#[test]
+fn new_writes_all_its_files_or_none() {
+    let dir = tempdir();
+    // An image's folder taken by a file; the description's own name taken
+    // by a folder (the images folder made for it goes again).
+    for (folder, taken, a_folder, message) in [
+        ("mine", "images", false, "images"),
+        ("other", "p.toml", true, "a folder, not a file"),
+    ] {
+        let place = dir.path().join(folder);
+        fs::create_dir(&place).unwrap();
+        if a_folder {
+            fs::create_dir(place.join(taken)).unwrap();
+        } else {
+            fs::write(place.join(taken), "a file, not a folder").unwrap();
+        }
+        moyo(&dir)
+            .args(["new", "stipple-portrait", "-o", &format!("{folder}/p.toml")])
+            .assert()
+            .failure()
+            .stderr(predicate::str::contains(message));
+        assert_eq!(
+            entries(&place),
+            BTreeSet::from([taken.to_string()]),
+            "{folder}"
+        );
+    }
+}

@@ -235,3 +235,42 @@ fn bad_rules_name_the_option_and_the_column_and_write_nothing() {
         }
     }
 }
+
+#[test]
+fn frames_are_the_drawings_of_each_step_and_a_failed_run_leaves_no_folder() {
+    let d = dir();
+    let args = ["lsystem", "--axiom", "F", "--rule", "F=F[+F]F"];
+    moyo(&d)
+        .args(args)
+        .args(["-n", "3", "-o", "out.svg", "--frames", "steps"])
+        .assert()
+        .success();
+    // Each frame, written as it was made, is what that many steps draw.
+    for k in 0..=3 {
+        let alone = format!("alone-{k}.svg");
+        moyo(&d)
+            .args(args)
+            .args(["-n", &k.to_string(), "-o", &alone])
+            .assert()
+            .success();
+        assert_eq!(
+            fs::read(d.path().join(format!("steps/frame-{k:03}.svg"))).unwrap(),
+            fs::read(d.path().join(&alone)).unwrap(),
+            "frame {k}"
+        );
+    }
+    // An output that cannot be written (a folder stands there): the
+    // folders made for the frames go again, nothing is written.
+    fs::create_dir(d.path().join("taken")).unwrap();
+    moyo(&d)
+        .args(args)
+        .args(["-n", "3", "-o", "taken", "--frames", "new/frames"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("taken: a folder, not a file"));
+    assert!(!d.path().join("new").exists());
+    assert!(fs::read_dir(d.path().join("taken"))
+        .unwrap()
+        .next()
+        .is_none());
+}

@@ -694,6 +694,105 @@ fn a_newer_edit_calls_off_the_render_before_it() {
     studio.stop();
 }
 
+/// 2,000 sites relaxed `relax` steps (within the scene's site-step
+/// budget at 500): seconds of work, one unit of progress a step.
+fn relaxation(relax: u32) -> String {
+    format!(
+        "version = 1\nseed = 4\n\n[page]\nsize = \"A5\"\n\n[[layers]]\nname = \"cells\"\n\n\
+         [[layers.voronoi]]\nid = \"heavy\"\nrelax = {relax}\n\n[layers.voronoi.sites]\n\
+         distribution = \"uniform\"\ncount = 2000\n"
+    )
+}
+
+#[test]
+fn a_relaxation_called_off_runs_no_step_after() {
+    // Counted in steps, not time: the flag raised as step 3 reports, the
+    // render stops at the start of step 4 (checked before each step and
+    // each cell), where before it ran every step and stopped after.
+    let spec = moyo::ValidSpec::parse(&relaxation(400), moyo::Format::Toml).unwrap();
+    let library = moyo::project::load_motifs(&spec, Path::new(".")).unwrap();
+    let cancel = moyo::project::Cancel::default();
+    let (mut steps, mut after) = (0, 0);
+    let result = moyo::project::render_cancellable(
+        &spec,
+        &library,
+        &mut |_| {
+            if cancel.is_raised() {
+                after += 1;
+            } else {
+                steps += 1;
+                if steps == 3 {
+                    cancel.raise();
+                }
+            }
+        },
+        &cancel,
+    );
+    assert!(matches!(result, Err(moyo::Error::Cancelled)), "{result:?}");
+    assert_eq!((steps, after), (3, 0));
+}
+
+#[test]
+fn a_heavy_relaxation_is_called_off_by_a_light_edit() {
+    // 400 steps on 2,000 sites take tens of seconds here; the light edit
+    // behind it is the design, the heavy one is answered 409.
+    let (studio, _dir) = studio(SCENE);
+    let addr = studio.addr();
+    let heavy = relaxation(400);
+    let slow = std::thread::spawn(move || call(addr, "PUT", "/api/scene", &[], heavy.as_bytes()));
+    std::thread::sleep(Duration::from_millis(500));
+    let light = SCENE.replace("seed = 3", "seed = 9");
+    let fast = call(addr, "PUT", "/api/scene", &[], light.as_bytes());
+    assert_eq!(fast.status, 200, "{}", fast.text());
+    let slow = slow.join().unwrap();
+    assert_eq!(slow.status, 409, "{}", slow.text());
+    assert_eq!(get(addr, "/api/scene").text(), light);
+    let state = get(addr, "/api/state").json();
+    assert_eq!(state["rendered"], true, "{state}");
+    studio.stop();
+}
+
+#[test]
+fn an_edit_past_the_memory_budget_is_422_and_the_last_good_design_stays() {
+    // The Hilbert curve at 11 iterations (4.2 million segments, 1.5 GB in
+    // release) to a studio allowed 200 MiB: refused while it draws, where
+    // it would have grown until the machine ran out.
+    let dir = tempdir();
+    let mut running = command(dir.path(), &["--memory-mb", "200"], &[], None);
+    let addr = running.addr;
+    let good = get(addr, "/api/svg");
+    assert_eq!(good.status, 200);
+    let heavy = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/lsystem-hilbert.toml"),
+    )
+    .unwrap()
+    .replace("iterations = 6", "iterations = 11");
+    let refused = call(addr, "PUT", "/api/scene", &[], heavy.as_bytes());
+    assert_eq!(refused.status, 422, "{}", refused.text());
+    let error = refused.json()["error"].as_str().unwrap().to_string();
+    assert!(
+        error.starts_with("memory budget exceeded: the render held ")
+            && error.contains("past the budget of 200 MB"),
+        "{error}"
+    );
+    assert!(
+        running.child.try_wait().unwrap().is_none(),
+        "the studio ended"
+    );
+    // The state says why; the design is the last good one.
+    let state = get(addr, "/api/state").json();
+    assert_eq!(state["rendered"], false, "{state}");
+    assert_eq!(state["error"]["error"], error.as_str(), "{state}");
+    assert_eq!(get(addr, "/api/svg").body, good.body);
+    // And it goes on: a light edit renders.
+    let light = call(addr, "PUT", "/api/scene", &[], SCENE.as_bytes());
+    assert_eq!(light.status, 200, "{}", light.text());
+    assert!(
+        running.child.try_wait().unwrap().is_none(),
+        "the studio ended"
+    );
+}
+
 #[test]
 fn the_command_starts_on_a_json_description_as_toml_and_names_a_broken_one() {
     let dir = tempdir();
@@ -826,6 +925,7 @@ fn connections_past_the_cap_wait_and_a_body_that_stalls_is_answered_408() {
         header_timeout: Duration::from_millis(300),
         body_timeout: Duration::from_millis(300),
         connections: 2,
+        ..StudioLimits::default()
     };
     let (studio, _dir) = studio_with(SCENE, "127.0.0.1:0", limits);
     let addr = studio.addr();

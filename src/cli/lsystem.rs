@@ -7,8 +7,9 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 
+use super::folders::MadeFolders;
 use super::{check_outputs, identity, CliError, Named};
-use moyo::output::write_all_atomic;
+use moyo::output::Staged;
 use moyo::project::{self, Rendered};
 use moyo::spec::{
     Format, LSystemSpec, LimbStyle, NamedView, PaperSize, SceneSpec, SketchSpec, ValidSpec, View,
@@ -348,7 +349,7 @@ fn is_frame(name: &str) -> bool {
 /// Removes the frames in `dir` that this run did not write (`written`):
 /// those of an earlier, longer growth, which would play on after this
 /// one's. Only names `--frames` writes are touched.
-fn remove_old_frames(dir: &Path, written: &[(PathBuf, &[u8])]) -> Result<(), CliError> {
+fn remove_old_frames(dir: &Path, written: &[PathBuf]) -> Result<(), CliError> {
     let io = |path: &Path, e: std::io::Error| CliError::Message(format!("{}: {e}", path.display()));
     let entries = std::fs::read_dir(dir).map_err(|e| io(dir, e))?;
     for entry in entries {
@@ -356,7 +357,7 @@ fn remove_old_frames(dir: &Path, written: &[(PathBuf, &[u8])]) -> Result<(), Cli
         let path = entry.path();
         let old = entry.file_name().to_str().is_some_and(is_frame)
             && entry.file_type().is_ok_and(|t| t.is_file())
-            && !written.iter().any(|(p, _)| *p == path);
+            && !written.contains(&path);
         if old {
             std::fs::remove_file(&path).map_err(|e| {
                 CliError::Message(format!("{}: an old frame not removed: {e}", path.display()))
@@ -418,38 +419,16 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
         Some(_) => Some(moyo::output::render_png(&rendered.preview_svg(), args.dpi)?),
         None => None,
     };
-    let frames = match &args.frames {
-        Some(_) => frames(&spec, &base, &rendered, args)?,
-        None => Vec::new(),
-    };
-    let growth = match &args.frames {
-        Some(_) => {
-            let svgs: Vec<&str> = frames.iter().map(|(svg, _)| svg.as_str()).collect();
-            moyo::output::animated_svg(&svgs)?
+    // A folder for the frames that this run made is taken away again if
+    // it writes nothing.
+    let mut made = MadeFolders::default();
+    let frames = match write_outputs(&spec, &base, &rendered, png.as_deref(), args, &mut made) {
+        Ok(frames) => frames,
+        Err(e) => {
+            made.remove();
+            return Err(e);
         }
-        None => String::new(),
     };
-    // All or none, frames included: a failed output leaves every old file.
-    let mut files: Vec<(PathBuf, &[u8])> = vec![(args.output.clone(), rendered.svg.as_bytes())];
-    if let (Some(path), Some(bytes)) = (&args.png, &png) {
-        files.push((path.clone(), bytes));
-    }
-    if let Some(dir) = &args.frames {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| CliError::Message(format!("{}: {e}", dir.display())))?;
-        for (k, (svg, png)) in frames.iter().enumerate() {
-            files.push((dir.join(format!("frame-{k:03}.svg")), svg.as_bytes()));
-            if let Some(bytes) = png {
-                files.push((dir.join(format!("frame-{k:03}.png")), bytes));
-            }
-        }
-        files.push((dir.join("growth.svg"), growth.as_bytes()));
-    }
-    let written: Vec<(&Path, &[u8])> = files.iter().map(|(p, b)| (p.as_path(), *b)).collect();
-    write_all_atomic(&written)?;
-    if let Some(dir) = &args.frames {
-        remove_old_frames(dir, &files)?;
-    }
     let stats = rendered.stats();
     eprintln!(
         "wrote {}{} ({} paths, {:.0} mm pen-down){}",
@@ -462,7 +441,7 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
         stats.pen_down_mm,
         args.frames
             .as_ref()
-            .map(|d| format!(", and {} frames in {}", frames.len(), d.display()))
+            .map(|d| format!(", and {frames} frames in {}", d.display()))
             .unwrap_or_default(),
     );
     for note in &rendered.notes {
@@ -474,20 +453,71 @@ pub(crate) fn lsystem(args: &LSystemArgs) -> Result<(), CliError> {
 /// The most growth frames written.
 const MAX_FRAMES: u32 = 1000;
 
-/// A frame: its SVG, and its PNG when one is asked for.
-type Frame = (String, Option<Vec<u8>>);
+/// Writes the drawing (`rendered`, and its `png`) and, with `--frames`,
+/// the frames of its growth and `growth.svg`, all or none: each goes to
+/// its temporary file as soon as it is made, and all are renamed at the
+/// end, so no frame's drawing is held longer than it takes to write it
+/// (only each frame's SVG, for `growth.svg`). Frames of an earlier run
+/// this one did not write are then removed. Returns the number of frames.
+fn write_outputs(
+    spec: &ValidSpec,
+    base: &Path,
+    rendered: &Rendered,
+    png: Option<&[u8]>,
+    args: &LSystemArgs,
+    made: &mut MadeFolders,
+) -> Result<usize, CliError> {
+    if let Some(dir) = &args.frames {
+        made.make(dir)?;
+    }
+    let mut staged = Staged::default();
+    staged.stage(&args.output, rendered.svg.as_bytes())?;
+    if let (Some(path), Some(bytes)) = (&args.png, png) {
+        staged.stage(path, bytes)?;
+    }
+    let Some(dir) = &args.frames else {
+        staged.commit()?;
+        return Ok(0);
+    };
+    let mut written = Vec::new();
+    let mut svgs = Vec::new();
+    each_frame(spec, base, rendered, args, |k, frame, png| {
+        let path = dir.join(format!("frame-{k:03}.svg"));
+        staged.stage(&path, frame.svg.as_bytes())?;
+        written.push(path);
+        if let Some(bytes) = png {
+            let path = dir.join(format!("frame-{k:03}.png"));
+            staged.stage(&path, bytes)?;
+            written.push(path);
+        }
+        svgs.push(frame.svg);
+        Ok(())
+    })?;
+    let growth = {
+        let svgs: Vec<&str> = svgs.iter().map(String::as_str).collect();
+        moyo::output::animated_svg(&svgs)?
+    };
+    staged.stage(&dir.join("growth.svg"), growth.as_bytes())?;
+    staged.commit()?;
+    remove_old_frames(dir, &written)?;
+    Ok(svgs.len())
+}
 
-/// The drawing after each rewriting step (or module step of a sketch), up
-/// to the whole of `full`, as SVG and, with `--png`, PNG.
-fn frames(
+/// Hands `write` each frame of the growth in turn — the drawing after
+/// each rewriting step (or module step of a sketch), up to the whole of
+/// `full` — with its PNG when `--png` asks for one.
+fn each_frame<W>(
     spec: &ValidSpec,
     base: &Path,
     full: &Rendered,
     args: &LSystemArgs,
-) -> Result<Vec<Frame>, CliError> {
+    mut write: W,
+) -> Result<(), CliError>
+where
+    W: FnMut(usize, Rendered, Option<&[u8]>) -> Result<(), CliError>,
+{
     let precision = spec.output.precision;
     let whole = full.dump(precision);
-    let mut out = Vec::new();
     for k in 0..=MAX_FRAMES {
         let step = spec
             .edit(|s| {
@@ -504,10 +534,10 @@ fn frames(
             None => None,
         };
         let last = r.dump(precision) == whole;
-        out.push((r.svg, png));
+        write(k as usize, r, png.as_deref())?;
         if last {
             break;
         }
     }
-    Ok(out)
+    Ok(())
 }

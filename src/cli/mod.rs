@@ -10,13 +10,14 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 mod fill;
+mod folders;
 mod lsystem;
 mod plot;
 mod stencil;
 #[cfg(feature = "studio")]
 mod studio;
 
-use moyo::output::write_atomic;
+use moyo::output::write_all_atomic;
 use moyo::project::{self, Progress};
 use moyo::spec::{Format, SceneSpec, ValidSpec};
 use moyo::templates;
@@ -511,9 +512,8 @@ fn new(name: &str, output: Option<&Path>) -> Result<(), CliError> {
         .collect();
     match output {
         Some(path) => {
-            write_atomic(path, t.text.as_bytes())?;
-            eprintln!("wrote {}", path.display());
             let dir = path.parent().unwrap_or(Path::new("."));
+            let mut files: Vec<(PathBuf, &[u8])> = vec![(path.to_path_buf(), t.text.as_bytes())];
             for name in names {
                 let target = dir.join(name);
                 if target.exists() {
@@ -523,11 +523,27 @@ fn new(name: &str, output: Option<&Path>) -> Result<(), CliError> {
                 let bytes = templates::file(name).ok_or_else(|| {
                     CliError::Message(format!("template {}: {name} is not built in", t.name))
                 })?;
-                if let Some(parent) = target.parent() {
-                    std::fs::create_dir_all(parent)
-                        .map_err(|e| CliError::Message(format!("{}: {e}", parent.display())))?;
-                }
-                write_atomic(&target, bytes)?;
+                files.push((target, bytes));
+            }
+            // All or none: the folders the images go in are made first,
+            // and taken away again with the files when one cannot be
+            // written (a description without its images does not render).
+            let mut made = folders::MadeFolders::default();
+            let written = files
+                .iter()
+                .skip(1)
+                .filter_map(|(target, _)| target.parent())
+                .try_for_each(|parent| made.make(parent))
+                .and_then(|()| {
+                    let all: Vec<(&Path, &[u8])> =
+                        files.iter().map(|(p, b)| (p.as_path(), *b)).collect();
+                    write_all_atomic(&all).map_err(CliError::from)
+                });
+            if let Err(e) = written {
+                made.remove();
+                return Err(e);
+            }
+            for (target, _) in &files {
                 eprintln!("wrote {}", target.display());
             }
             Ok(())

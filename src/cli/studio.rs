@@ -27,6 +27,11 @@ pub(crate) struct StudioArgs {
     /// another address lets others on the network edit your files.
     #[arg(long, default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
     host: IpAddr,
+    /// Most memory (MiB) the studio may hold while it renders an edit; an
+    /// edit that needs more is refused and the last good design stays
+    /// (read from the system on Linux; elsewhere not checked).
+    #[arg(long, value_name = "MIB", default_value_t = 4096, value_parser = clap::value_parser!(u64).range(64..=1 << 30))]
+    memory_mb: u64,
 }
 
 /// `moyo studio`.
@@ -51,7 +56,10 @@ pub(crate) fn studio(args: &StudioArgs) -> Result<(), CliError> {
         folder: PathBuf::from("."),
         text,
         addr: SocketAddr::new(args.host, args.port),
-        limits: limits()?,
+        limits: StudioLimits {
+            memory: args.memory_mb << 20,
+            ..limits()?
+        },
     })?;
     eprintln!(
         "moyo studio: open {} (Ctrl-C to stop; files are read and written in {})",

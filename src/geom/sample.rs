@@ -722,6 +722,9 @@ impl<'a> Sampler<'a> {
     /// Bridson's loop: grows from the active points until none is left.
     fn grow(&mut self, rng: &mut RandomStream) -> Result<()> {
         while !self.active.is_empty() {
+            // Each turn evaluates the radius (a density formula, an
+            // image) up to CANDIDATES times: a newer edit stops it here.
+            crate::cancel::checkpoint()?;
             let a = rng.below(self.active.len());
             let (p, r) = self.active[a];
             let mut placed = false;

@@ -194,23 +194,64 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 /// or made read-only in the instant between them): the targets before it
 /// are then new, the one named and those after it old.
 pub fn write_all_atomic(files: &[(&Path, &[u8])]) -> Result<()> {
+    // Every target checked before any file is written.
     for (path, _) in files {
-        check_output_folder(path)?;
-        // A rename over a folder fails: refused here, before any file is
-        // written, rather than after the renames before it.
-        if path.is_dir() {
-            let e = io::Error::new(io::ErrorKind::IsADirectory, "a folder, not a file");
-            return Err(Error::io(path, e));
-        }
+        check_target(path)?;
     }
-    let mut pending = Vec::with_capacity(files.len());
+    let mut staged = Staged::default();
     for (path, bytes) in files {
-        pending.push(Pending::write(path, bytes)?);
+        staged.stage(path, bytes)?;
     }
-    for (file, (path, _)) in pending.into_iter().zip(files) {
-        file.rename(path)?;
+    staged.commit()
+}
+
+/// [`check_output_folder`], and a target that is not a folder: a rename
+/// over a folder fails, and is refused before any file is written rather
+/// than after the renames before it.
+fn check_target(path: &Path) -> Result<()> {
+    check_output_folder(path)?;
+    if path.is_dir() {
+        let e = io::Error::new(io::ErrorKind::IsADirectory, "a folder, not a file");
+        return Err(Error::io(path, e));
     }
     Ok(())
+}
+
+/// Files written one at a time to their temporary files, as they are
+/// made, and renamed over their targets all at once by
+/// [`Staged::commit`]: [`write_all_atomic`] for outputs too many or too
+/// large to hold in memory together (the frames of a growth). Dropped
+/// without a commit, it removes its temporary files and no target is
+/// touched.
+#[derive(Default)]
+pub struct Staged {
+    pending: Vec<(PathBuf, Pending)>,
+}
+
+impl Staged {
+    /// Writes `bytes` to a temporary file beside `path`, to be renamed
+    /// over it by [`Staged::commit`].
+    ///
+    /// # Errors
+    /// As [`write_all_atomic`], for this file; the files staged before
+    /// stay staged (drop the batch to remove them).
+    pub fn stage(&mut self, path: &Path, bytes: &[u8]) -> Result<()> {
+        check_target(path)?;
+        let file = Pending::write(path, bytes)?;
+        self.pending.push((path.to_path_buf(), file));
+        Ok(())
+    }
+
+    /// Renames every staged file over its target, in the order staged.
+    ///
+    /// # Errors
+    /// As [`write_all_atomic`]'s renames.
+    pub fn commit(self) -> Result<()> {
+        for (path, file) in self.pending {
+            file.rename(&path)?;
+        }
+        Ok(())
+    }
 }
 
 /// A temporary file written, synced and closed (a run may write hundreds
@@ -284,6 +325,24 @@ mod tests {
             .collect();
         names.sort();
         names
+    }
+
+    #[test]
+    fn staged_files_are_renamed_on_commit_only() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.svg"), dir.path().join("b.svg"));
+        let mut staged = Staged::default();
+        staged.stage(&a, b"a").unwrap();
+        staged.stage(&b, b"b").unwrap();
+        assert_eq!(entries(dir.path()).len(), 2, "two temporary files");
+        assert!(!a.exists() && !b.exists());
+        staged.commit().unwrap();
+        assert_eq!(entries(dir.path()), ["a.svg", "b.svg"]);
+        // Dropped without a commit: its temporary file goes, no target.
+        let mut dropped = Staged::default();
+        dropped.stage(&dir.path().join("c.svg"), b"c").unwrap();
+        drop(dropped);
+        assert_eq!(entries(dir.path()), ["a.svg", "b.svg"]);
     }
 
     #[test]

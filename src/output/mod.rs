@@ -21,7 +21,8 @@
 //! - [`animated_svg`]: frames of a growth in one looping SVG, to watch;
 //! - [`write_atomic`]: puts any of these on disk without half-written files
 //!   ([`check_output_folder`]: whether the folder is there, asked first;
-//!   [`write_all_atomic`]: several files, all or none;
+//!   [`write_all_atomic`]: several files, all or none; [`Staged`]: the
+//!   same, written one at a time as they are made;
 //!   [`remove_temporaries`]: for a signal handler, nothing left behind);
 //! - [`write_number`]: the single number formatter behind all text outputs.
 
@@ -44,7 +45,7 @@ mod template;
 
 pub use animate::{animated_svg, FRAME_SECONDS};
 pub use atomic::{
-    check_output_folder, remove_temporaries, write_all_atomic, write_atomic, STALE_AFTER,
+    check_output_folder, remove_temporaries, write_all_atomic, write_atomic, Staged, STALE_AFTER,
 };
 pub use dump::path_dump;
 pub use number::{grouped, write_number};

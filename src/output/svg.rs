@@ -129,6 +129,12 @@ pub fn to_svg(scene: &Scene, options: &SvgOptions) -> String {
 pub(crate) fn write_path_data(out: &mut String, path: &BezPath, precision: u8) {
     for (i, el) in path.elements().iter().enumerate() {
         if i > 0 {
+            // A path of millions of segments takes most of a second to
+            // write: a render called off stops here, and throws away what
+            // was written (it checks its flag once the SVG is written).
+            if i % 65_536 == 0 && crate::cancel::called_off() {
+                return;
+            }
             out.push(' ');
         }
         let (cmd, points): (char, &[Point]) = match el {

@@ -50,7 +50,7 @@ pub(super) fn build(
     cancel: &Cancel,
 ) -> Result<(Scene, Vec<Note>, Vec<Model>)> {
     let flow = Flow::new(&spec.lines);
-    let ids = layer_ids(spec);
+    let ids = layer_ids(spec)?;
     let mut cx = Context::new(spec, library, &flow, progress).with_cancel(cancel);
     let mut layers = Vec::with_capacity(spec.layers.len());
     for (index, (layer, id)) in spec.layers.iter().zip(&ids).enumerate() {
@@ -171,7 +171,7 @@ fn table_sites(
     voronoi: &VoronoiSpec,
 ) -> Result<Vec<Point>> {
     let flow = Flow::new(&spec.lines);
-    let ids = layer_ids(spec);
+    let ids = layer_ids(spec)?;
     let mut quiet = |_| {};
     let mut cx = Context::new(spec, library, &flow, &mut quiet);
     // The regions a table fills come from the layers built before it.
@@ -188,15 +188,16 @@ fn table_sites(
 /// Stable, unique, SVG-safe ids for the layers, made from their names: a
 /// slug, and when it is taken, the slug with the first free `-2`, `-3`, …
 /// ([`UniqueIds`]).
-fn layer_ids(spec: &ValidSpec) -> Vec<String> {
+fn layer_ids(spec: &ValidSpec) -> Result<Vec<String>> {
     ids_of(spec.layers.iter().map(|l| l.name.as_str()))
 }
 
 /// [`layer_ids`] of these names.
-fn ids_of<'a>(names: impl Iterator<Item = &'a str>) -> Vec<String> {
+fn ids_of<'a>(names: impl Iterator<Item = &'a str>) -> Result<Vec<String>> {
     let mut ids = UniqueIds::default();
     names
         .map(|name| {
+            crate::cancel::checkpoint()?;
             let mut slug: String = name
                 .chars()
                 .map(|c| {
@@ -210,7 +211,7 @@ fn ids_of<'a>(names: impl Iterator<Item = &'a str>) -> Vec<String> {
             if !slug.starts_with(|c: char| c.is_ascii_alphabetic()) {
                 slug.insert_str(0, "layer-");
             }
-            ids.unique(&slug)
+            Ok(ids.unique(&slug))
         })
         .collect()
 }
@@ -255,11 +256,16 @@ pub fn render_with_progress(
 
 /// [`render_with_progress`] that stops with [`Error::Cancelled`] soon
 /// after `cancel` is raised: between tables, whenever a generator takes
-/// paths from the budget, between the plot stages and inside hidden-line
-/// removal, and before the SVG.
+/// paths from the budget, inside the long loops (layer ids, rewriting an
+/// L-system word, placing and relaxing sites and the density formulas
+/// they evaluate, zentangle steps), between the plot stages and inside
+/// hidden-line removal, and before the SVG. A flag with a memory budget
+/// ([`Cancel::with_memory_limit`]) stops it at the same places with
+/// [`Error::MemoryBudget`].
 ///
 /// # Errors
-/// As [`render_with_progress`], and [`Error::Cancelled`].
+/// As [`render_with_progress`], [`Error::Cancelled`] and
+/// [`Error::MemoryBudget`].
 pub fn render_cancellable(
     spec: &ValidSpec,
     library: &Library,
@@ -296,6 +302,10 @@ fn render_through(
     cancel: &Cancel,
     stages: &PlotOptions,
 ) -> Result<Rendered> {
+    // The loops deep inside (site placement, relaxation, rewriting…)
+    // check this flag, and the memory budget, through
+    // `crate::cancel::checkpoint`.
+    let _entered = cancel.enter();
     let (scene, notes, models) =
         build(spec, library, progress, cancel).map_err(|e| spec.locate(e))?;
     cancel.check()?;
@@ -303,6 +313,9 @@ fn render_through(
     cancel.check()?;
     let options = svg_options(spec);
     let svg = to_svg(&scene, &options);
+    // Written in full unless the render was called off meanwhile; and the
+    // memory's peak so far read, whenever it was last.
+    cancel.check_now()?;
     Ok(Rendered {
         scene,
         svg,
@@ -371,7 +384,7 @@ mod tests {
     fn layer_ids_are_unique_slugs_numbered_in_order() {
         let names = ["Front", "front", "front-2", "2nd", "front", "桜", "梅"];
         assert_eq!(
-            ids_of(names.into_iter()),
+            ids_of(names.into_iter()).unwrap(),
             [
                 "front",
                 "front-2",
@@ -392,9 +405,18 @@ mod tests {
         let names: Vec<String> = (0..40_000u32)
             .map(|i| char::from_u32(0x4E00 + i % 20_000).unwrap().to_string() + "葉")
             .collect();
-        let ids = ids_of(names.iter().map(String::as_str));
+        let ids = ids_of(names.iter().map(String::as_str)).unwrap();
         let unique: std::collections::HashSet<&String> = ids.iter().collect();
         assert_eq!(unique.len(), ids.len());
         assert_eq!(ids[39_999], "layer----40000");
+    }
+
+    #[test]
+    fn layer_ids_stop_when_the_render_is_called_off() {
+        let cancel = Cancel::default();
+        cancel.raise();
+        let _entered = cancel.enter();
+        let names = ["a"; 10];
+        assert!(matches!(ids_of(names.into_iter()), Err(Error::Cancelled)));
     }
 }

@@ -3,7 +3,11 @@
 //! and `X-Content-Type-Options: nosniff` on every answer. Every answer
 //! about a description that does not work is 422 with the error as JSON
 //! (`{"error", "path", "line", "column"}`), worded as the command line
-//! words it; an edit that a newer one replaced is 409.
+//! words it (a render past the studio's memory is one); an edit that a
+//! newer one replaced is 409. Everything that costs in proportion to the
+//! description — parsing it, rendering, listing its fields and handles,
+//! reading and writing files — runs off the server's threads
+//! ([`off_thread`]), so that a heavy request cannot hold the others.
 
 use std::net::{IpAddr, SocketAddr};
 use std::sync::{Arc, Mutex};
@@ -252,18 +256,28 @@ fn svg_response(svg: &str, app: &App) -> Response {
     response
 }
 
-/// Renders `text` off the server's threads.
-pub(super) async fn apply(app: &App, text: String, direction: Move) -> Result<Arc<Good>, Response> {
-    let session = Arc::clone(&app.session);
-    match tokio::task::spawn_blocking(move || session.apply(text, direction)).await {
-        Ok(Ok(good)) => Ok(good),
+/// Runs `work` on the blocking pool, off the server's threads: a
+/// description of up to [`MAX_BODY`] takes time to parse, and a render
+/// far more. Its error is answered as [`failure`] says; a panic (none is
+/// known) is 500.
+pub(super) async fn off_thread<T: Send + 'static>(
+    work: impl FnOnce() -> Result<T, Error> + Send + 'static,
+) -> Result<T, Response> {
+    match tokio::task::spawn_blocking(work).await {
+        Ok(Ok(t)) => Ok(t),
         Ok(Err(e)) => Err(failure(&e)),
         Err(e) => Err((
             StatusCode::INTERNAL_SERVER_ERROR,
-            format!("the render failed: {e}"),
+            format!("the work failed: {e}"),
         )
             .into_response()),
     }
+}
+
+/// Renders `text` off the server's threads.
+pub(super) async fn apply(app: &App, text: String, direction: Move) -> Result<Arc<Good>, Response> {
+    let session = Arc::clone(&app.session);
+    off_thread(move || session.apply(text, direction)).await
 }
 
 /// The design after a change the page did not write itself: its text,
@@ -337,15 +351,7 @@ async fn plot_svg_response(good: &Arc<Good>, app: &App) -> Response {
 /// What `moyo render` writes for the design, made off the server's
 /// threads (the pen stage runs once per design).
 async fn plot_svg(good: Arc<Good>) -> Result<String, Response> {
-    match tokio::task::spawn_blocking(move || good.plotted().map(|p| p.svg.clone())).await {
-        Ok(Ok(svg)) => Ok(svg),
-        Ok(Err(e)) => Err(failure(&e)),
-        Err(e) => Err((
-            StatusCode::INTERNAL_SERVER_ERROR,
-            format!("writing the SVG failed: {e}"),
-        )
-            .into_response()),
-    }
+    off_thread(move || good.plotted().map(|p| p.svg.clone())).await
 }
 
 async fn preview(State(app): State<App>) -> Response {
@@ -360,13 +366,23 @@ async fn state(State(app): State<App>) -> Response {
     let text = app.session.text();
     let good = app.session.good();
     let current = good.as_ref().is_some_and(|g| g.text == text);
+    let refused = app.session.refused();
     let error = if current {
         Value::Null
     } else {
-        // Say again what is wrong with the text as written.
-        match crate::spec::ValidSpec::parse(&text, crate::spec::Format::Toml) {
-            Ok(_) => Value::Null,
-            Err(e) => error_fields(&e),
+        // Say again what is wrong with the text as written (parsed off
+        // the server's threads: it may be megabytes), or what refused it.
+        let parsed = off_thread(move || {
+            Ok(crate::spec::ValidSpec::parse(&text, crate::spec::Format::Toml).err())
+        })
+        .await;
+        match parsed {
+            Ok(Some(e)) => error_fields(&e),
+            Ok(None) => refused.map_or(
+                Value::Null,
+                |message| json!({"error": message, "path": null, "line": null, "column": null}),
+            ),
+            Err(response) => return response,
         }
     };
     Json(json!({
@@ -402,7 +418,7 @@ async fn fields(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let listed = tokio::task::spawn_blocking(move || {
+    let listed = off_thread(move || {
         let value = &good.value;
         let mut seen = std::collections::BTreeSet::new();
         let mut list: Vec<Value> = good
@@ -432,12 +448,12 @@ async fn fields(State(app): State<App>) -> Response {
         list.extend(choices(value).into_iter().map(
             |c| json!({"field": c.field, "kind": "choice", "value": c.value, "options": c.options}),
         ));
-        list
+        Ok(list)
     })
     .await;
     match listed {
         Ok(list) => Json(list).into_response(),
-        Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+        Err(response) => response,
     }
 }
 
@@ -452,7 +468,7 @@ struct FieldChange {
 }
 
 async fn patch_field(State(app): State<App>, Json(change): Json<FieldChange>) -> Response {
-    edit_fields(&app, &[change]).await
+    edit_fields(&app, vec![change]).await
 }
 
 #[derive(Deserialize)]
@@ -463,12 +479,14 @@ struct FieldChanges {
 /// Several numbers changed as one edit (both coordinates of a dragged
 /// point).
 async fn patch_fields(State(app): State<App>, Json(request): Json<FieldChanges>) -> Response {
-    edit_fields(&app, &request.changes).await
+    edit_fields(&app, request.changes).await
 }
 
-async fn edit_fields(app: &App, changes: &[FieldChange]) -> Response {
-    let written = Edit::parse(&app.session.text()).and_then(|mut edit| {
-        for change in changes {
+async fn edit_fields(app: &App, changes: Vec<FieldChange>) -> Response {
+    let text = app.session.text();
+    let written = off_thread(move || {
+        let mut edit = Edit::parse(&text)?;
+        for change in &changes {
             match &change.value {
                 Value::Number(n) => {
                     let n = n.as_f64().unwrap_or(f64::NAN);
@@ -485,10 +503,11 @@ async fn edit_fields(app: &App, changes: &[FieldChange]) -> Response {
             }
         }
         Ok(edit.text())
-    });
+    })
+    .await;
     let text = match written {
         Ok(text) => text,
-        Err(e) => return failure(&e),
+        Err(response) => return response,
     };
     match apply(app, text, Move::Edit).await {
         Ok(good) => changed(app, &good),
@@ -513,6 +532,14 @@ async fn handles(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
+    match off_thread(move || Ok(handles_of(&good))).await {
+        Ok(handles) => Json(handles).into_response(),
+        Err(response) => response,
+    }
+}
+
+/// What `GET /api/handles` answers for `good`.
+fn handles_of(good: &Good) -> Value {
     let value = &good.value;
     let mut lines: Vec<(String, Vec<[f64; 2]>, Vec<String>)> = Vec::new();
     for field in point_lists(value) {
@@ -538,7 +565,7 @@ async fn handles(State(app): State<App>) -> Response {
         })
         .collect();
     let margins = good.spec.page().margins;
-    Json(json!({"offset": [margins.left, margins.top], "lines": lines})).into_response()
+    json!({"offset": [margins.left, margins.top], "lines": lines})
 }
 
 async fn step(app: App, direction: Move) -> Response {
@@ -593,16 +620,15 @@ async fn save(State(app): State<App>, Json(request): Json<FileRequest>) -> Respo
     };
     let session = Arc::clone(&app.session);
     let name = request.path.clone();
-    let written = tokio::task::spawn_blocking(move || {
+    let written = off_thread(move || {
         let path = session.folder().resolve(&name, "path")?;
         folder::check_writable(&path, "path")?;
         write_atomic(&path, &bytes)
     })
     .await;
     match written {
-        Ok(Ok(())) => Json(json!({"saved": request.path})).into_response(),
-        Ok(Err(e)) => failure(&e),
-        Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+        Ok(()) => Json(json!({"saved": request.path})).into_response(),
+        Err(response) => response,
     }
 }
 
@@ -613,13 +639,13 @@ async fn save(State(app): State<App>, Json(request): Json<FileRequest>) -> Respo
 async fn open(State(app): State<App>, Json(request): Json<FileRequest>) -> Response {
     let session = Arc::clone(&app.session);
     let name = request.path.clone();
-    let read = tokio::task::spawn_blocking(move || {
+    let read = off_thread(move || {
         let path = session.folder().resolve(&name, "path")?;
         folder::read_text(&path).map_err(|e| Error::io(&path, e))
     })
     .await;
     let text = match read {
-        Ok(Ok(text)) if request.path.ends_with(".svg") => {
+        Ok(text) if request.path.ends_with(".svg") => {
             match crate::scene::embedded_description(&text) {
                 Some(description) => description,
                 None => {
@@ -630,9 +656,8 @@ async fn open(State(app): State<App>, Json(request): Json<FileRequest>) -> Respo
                 }
             }
         }
-        Ok(Ok(text)) => text,
-        Ok(Err(e)) => return failure(&e),
-        Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+        Ok(text) => text,
+        Err(response) => return response,
     };
     match apply(&app, text, Move::Edit).await {
         Ok(good) => changed(&app, &good),
@@ -675,7 +700,7 @@ async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Respons
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let job = tokio::task::spawn_blocking(move || -> Result<(Vec<u8>, &str, &str), Error> {
+    let job = off_thread(move || -> Result<(Vec<u8>, &str, &str), Error> {
         match q.format.as_str() {
             "png" => {
                 let dpi = q.dpi.unwrap_or(96.0);
@@ -708,7 +733,7 @@ async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Respons
     })
     .await;
     match job {
-        Ok(Ok((bytes, kind, extension))) => {
+        Ok((bytes, kind, extension)) => {
             let disposition = format!("attachment; filename=\"moyo.{extension}\"");
             let mut headers = HeaderMap::new();
             headers.insert(header::CONTENT_TYPE, HeaderValue::from_static(kind));
@@ -717,8 +742,7 @@ async fn export(State(app): State<App>, Query(q): Query<ExportQuery>) -> Respons
             }
             (headers, bytes).into_response()
         }
-        Ok(Err(e)) => failure(&e),
-        Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
+        Err(response) => response,
     }
 }
 

@@ -11,18 +11,17 @@
 //! `GET /api/targets`.
 
 use axum::extract::State;
-use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::{Json, Router};
 use serde::Deserialize;
 use serde_json::{json, Value};
 
-use super::api::{apply, changed, failure, nothing_rendered, App};
+use super::api::{apply, changed, failure, nothing_rendered, off_thread, App};
 use super::edit::table_index;
 use super::edit::Edit;
 use super::pen::{Stroke, Target};
-use super::session::Move;
+use super::session::{Good, Move};
 use crate::error::Error;
 use crate::family::gesture::{tenth, Gesture, Gestures};
 use crate::spec::SceneSpec;
@@ -48,6 +47,14 @@ async fn targets(State(app): State<App>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
+    match off_thread(move || Ok(targets_of(&good))).await {
+        Ok(targets) => Json(targets).into_response(),
+        Err(response) => response,
+    }
+}
+
+/// What `GET /api/targets` answers for `good`.
+fn targets_of(good: &Good) -> Value {
     let spec = good.spec.spec();
     let scene = &good.rendered.scene;
     let mut lists = serde_json::Map::new();
@@ -83,7 +90,7 @@ async fn targets(State(app): State<App>) -> Response {
         })
         .collect();
     lists.insert("layers".into(), Value::Array(layers));
-    Json(Value::Object(lists)).into_response()
+    Value::Object(lists)
 }
 
 /// The table at `field` (`layers[0].zentangle[1]`) of `spec` when it
@@ -121,29 +128,30 @@ async fn with_stroke<T: Send + 'static>(
     work: impl FnOnce(&mut Option<Stroke>) -> Result<T, Error> + Send + 'static,
 ) -> Result<T, Response> {
     let stroke = std::sync::Arc::clone(&app.stroke);
-    let done = tokio::task::spawn_blocking(move || {
+    off_thread(move || {
         let mut stroke = stroke
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
         work(&mut stroke)
     })
-    .await;
-    match done {
-        Ok(Ok(t)) => Ok(t),
-        Ok(Err(e)) => Err(failure(&e)),
-        Err(e) => Err((StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response()),
-    }
+    .await
 }
 
-/// A gesture's new description, rendered as one edit; where it does not
-/// render, the description stays as it was.
-async fn write(app: &App, text: Result<String, Error>) -> Response {
-    match text {
-        Ok(text) => match apply(app, text, Move::Gesture).await {
-            Ok(good) => changed(app, &good),
-            Err(response) => response,
-        },
-        Err(e) => failure(&e),
+/// A gesture's new description, written by `edit` off the server's
+/// threads (it parses the description, which may be megabytes) and
+/// rendered as one edit; where it does not render, the description stays
+/// as it was.
+async fn write(
+    app: &App,
+    edit: impl FnOnce() -> Result<String, Error> + Send + 'static,
+) -> Response {
+    let text = match off_thread(edit).await {
+        Ok(text) => text,
+        Err(response) => return response,
+    };
+    match apply(app, text, Move::Gesture).await {
+        Ok(good) => changed(app, &good),
+        Err(response) => response,
     }
 }
 
@@ -201,7 +209,7 @@ async fn stroke_end(State(app): State<App>) -> Response {
     })
     .await;
     match written {
-        Ok(text) => write(&app, Ok(text)).await,
+        Ok(text) => write(&app, move || Ok(text)).await,
         Err(response) => response,
     }
 }
@@ -225,20 +233,18 @@ async fn fill(State(app): State<App>, Json(click): Json<Fill>) -> Response {
     let Some(good) = app.session.good() else {
         return nothing_rendered();
     };
-    let Some(table) = offering(good.spec.spec(), &click.target, Gesture::Fill) else {
-        return failure(&Error::invalid(
-            &click.target,
-            "is not a zentangle fill of the design",
-        ));
-    };
     let [x, y] = click.at;
     if !(x.is_finite() && y.is_finite()) {
         return failure(&Error::invalid("at", "the click is not a finite point"));
     }
-    let text = table
-        .click(&click.target, click.at, click.procedure)
-        .and_then(|changes| Edit::with_changes(&good.text, changes));
-    write(&app, text).await
+    write(&app, move || {
+        let table = offering(good.spec.spec(), &click.target, Gesture::Fill).ok_or_else(|| {
+            Error::invalid(&click.target, "is not a zentangle fill of the design")
+        })?;
+        let changes = table.click(&click.target, click.at, click.procedure)?;
+        Edit::with_changes(&good.text, changes)
+    })
+    .await
 }
 
 #[derive(Deserialize)]
@@ -268,7 +274,7 @@ async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
     // Each table's sites; those equal to the target's are pinned.
     let work = {
         let good = std::sync::Arc::clone(&good);
-        tokio::task::spawn_blocking(move || {
+        off_thread(move || {
             let spec = good.spec.spec();
             let sites = crate::project::voronoi_sites(&good.spec, &good.library, l, t)?;
             let target = offering(spec, &pin.target, Gesture::Pin)
@@ -296,11 +302,10 @@ async fn pin(State(app): State<App>, Json(pin): Json<Pin>) -> Response {
             Edit::with_changes(&good.text, changes)
         })
     };
-    let text = match work.await {
-        Ok(text) => text,
-        Err(e) => return (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
-    };
-    write(&app, text).await
+    match work.await {
+        Ok(text) => write(&app, move || Ok(text)).await,
+        Err(response) => response,
+    }
 }
 
 #[derive(Deserialize)]
@@ -352,7 +357,8 @@ async fn adjust(State(app): State<App>, Json(change): Json<Adjust>) -> Response 
         let s = was.and_then(|a| a.scale).unwrap_or(1.0) * f;
         ((s * 1000.0).round() / 1000.0).clamp(0.01, 100.0)
     });
-    let text = Edit::parse(&good.text).and_then(|mut edit| {
+    write(&app, move || {
+        let mut edit = Edit::parse(&good.text)?;
         let mut values: Vec<(&str, toml_edit::Value)> = Vec::new();
         if let Some([x, y]) = offset {
             values.push(("move", toml_edit::Array::from_iter([x, y]).into()));
@@ -379,8 +385,8 @@ async fn adjust(State(app): State<App>, Json(change): Json<Adjust>) -> Response 
             edit.push_table("adjust", table, false)?;
         }
         Ok(edit.text())
-    });
-    write(&app, text).await
+    })
+    .await
 }
 
 #[derive(Deserialize)]
@@ -406,14 +412,11 @@ async fn orbit(State(app): State<App>, Json(change): Json<Turn>) -> Response {
     if !(change.turn.is_finite() && change.tilt.is_finite()) {
         return failure(&Error::invalid("turn", "the turn is not a finite number"));
     }
-    let Some(table) = offering(good.spec.spec(), &change.target, Gesture::Orbit) else {
-        return failure(&Error::invalid(
-            &change.target,
-            "is not a vine of the design",
-        ));
-    };
-    let text = table
-        .turn(&change.target, change.turn, change.tilt)
-        .and_then(|changes| Edit::with_changes(&good.text, changes));
-    write(&app, text).await
+    write(&app, move || {
+        let table = offering(good.spec.spec(), &change.target, Gesture::Orbit)
+            .ok_or_else(|| Error::invalid(&change.target, "is not a vine of the design"))?;
+        let changes = table.turn(&change.target, change.turn, change.tilt)?;
+        Edit::with_changes(&good.text, changes)
+    })
+    .await
 }

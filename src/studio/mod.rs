@@ -53,6 +53,14 @@ pub struct StudioLimits {
     /// Most connections open at once; further ones wait in the system's
     /// queue until one closes. Default 256, at least 1.
     pub connections: usize,
+    /// Most bytes of memory the studio may hold (resident) while it
+    /// renders an edit: past it, the render stops and the edit is refused
+    /// (422, [`Error::MemoryBudget`]), the last good design staying. Read
+    /// from the system (Linux) every few milliseconds at the render's
+    /// long loops; elsewhere there is no such budget. Default 4 GiB:
+    /// above the 2.6 GB the heaviest accepted description was measured
+    /// to take (RELIABILITY.md), below what ends a desktop.
+    pub memory: u64,
 }
 
 impl Default for StudioLimits {
@@ -61,6 +69,7 @@ impl Default for StudioLimits {
             header_timeout: Duration::from_secs(10),
             body_timeout: Duration::from_secs(30),
             connections: 256,
+            memory: 4 << 30,
         }
     }
 }
@@ -124,7 +133,11 @@ impl Studio {
         let addr = listener
             .local_addr()
             .map_err(|e| Error::io(options.addr.to_string(), e))?;
-        let session = Arc::new(session::Session::new(options.text.clone(), folder));
+        let session = Arc::new(session::Session::new(
+            options.text.clone(),
+            folder,
+            options.limits.memory,
+        ));
         // The first render, before the page can ask: its error, if any,
         // shows on the page.
         let _ = session.apply(options.text, session::Move::Edit);

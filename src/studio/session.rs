@@ -2,7 +2,9 @@
 //! wrote it (which may not be valid), the last render that worked, and
 //! the history for undo and redo. Renders run off the server's threads;
 //! each new edit calls off the render before it, so only the newest edit
-//! is ever waited for.
+//! is ever waited for. A render that takes the studio past its memory
+//! budget is called off the same way ([`crate::Error::MemoryBudget`]),
+//! and the last good design stays.
 
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
@@ -54,11 +56,16 @@ pub(crate) struct Session {
     /// The render under way, to call off when a newer edit comes.
     running: Mutex<Arc<Cancel>>,
     folder: Folder,
+    /// Most bytes of resident memory while a render runs.
+    memory: u64,
 }
 
 struct State {
     text: String,
     good: Option<Arc<Good>>,
+    /// Why `text` did not render, when its description is not at fault
+    /// (a budget): parsing it again would not say.
+    refused: Option<String>,
     undo: Vec<String>,
     redo: Vec<String>,
 }
@@ -78,17 +85,20 @@ pub(crate) enum Move {
 }
 
 impl Session {
-    /// A session on `text`, reading files in `folder`.
-    pub(crate) fn new(text: String, folder: Folder) -> Session {
+    /// A session on `text`, reading files in `folder`, whose renders may
+    /// take the process to `memory` bytes.
+    pub(crate) fn new(text: String, folder: Folder, memory: u64) -> Session {
         Session {
             state: Mutex::new(State {
                 text,
                 good: None,
+                refused: None,
                 undo: Vec::new(),
                 redo: Vec::new(),
             }),
             running: Mutex::new(Arc::new(Cancel::default())),
             folder,
+            memory,
         }
     }
 
@@ -109,6 +119,12 @@ impl Session {
     /// The description as last written.
     pub(crate) fn text(&self) -> String {
         self.state().text.clone()
+    }
+
+    /// Why the description as last written did not render, when that is
+    /// not the description's fault but a budget's (its memory).
+    pub(crate) fn refused(&self) -> Option<String> {
+        self.state().refused.clone()
     }
 
     /// The last render that worked.
@@ -138,10 +154,11 @@ impl Session {
     /// call it off the server's threads.
     ///
     /// # Errors
-    /// The description's error, with its field and place, or
-    /// [`Error::Cancelled`] when a newer edit replaced this one.
+    /// The description's error, with its field and place,
+    /// [`Error::Cancelled`] when a newer edit replaced this one, or
+    /// [`Error::MemoryBudget`] when it took the studio past its memory.
     pub(crate) fn apply(&self, text: String, direction: Move) -> Result<Arc<Good>> {
-        let cancel = Arc::new(Cancel::default());
+        let cancel = Arc::new(Cancel::with_memory_limit(self.memory));
         {
             let mut running = self
                 .running
@@ -180,11 +197,13 @@ impl Session {
                 }
                 s.text = text;
                 s.good = Some(Arc::clone(&good));
+                s.refused = None;
                 Ok(good)
             }
             Err(e) => {
                 if direction != Move::Gesture {
                     s.text = text;
+                    s.refused = matches!(e, Error::MemoryBudget { .. }).then(|| e.to_string());
                 }
                 Err(e)
             }
@@ -192,6 +211,9 @@ impl Session {
     }
 
     fn render(&self, text: &str, cancel: &Cancel) -> Result<Good> {
+        // The preview's SVG, written after the render, stops too when a
+        // newer edit comes (`apply` then throws it away).
+        let _entered = cancel.enter();
         let spec = ValidSpec::parse(text, Format::Toml)?;
         let library = load_motifs_with(&spec, &|name| match self.folder.resolve(name, name) {
             // Regular files only: a FIFO the description names would hold
@@ -216,6 +238,9 @@ impl Session {
         })?;
         let rendered = render_for_editing(&spec, &library, &mut |_| {}, cancel)?;
         let preview = rendered.preview_svg();
+        // The preview written in full, and the memory's peak within the
+        // budget, to the end.
+        cancel.check_now()?;
         // Written by moyo a moment ago, so it reads back.
         let value = toml::from_str(&spec.to_toml())
             .unwrap_or_else(|_| toml::Value::Table(toml::Table::new()));

@@ -402,6 +402,9 @@ impl<'a> Filling<'a> {
         procedure: u32,
         rng: &mut RandomStream,
     ) -> Result<Option<Step>> {
+        // Each try draws a tangle and composes it with the region: the
+        // unit of work a newer edit waits for.
+        crate::cancel::checkpoint()?;
         self.attempts += 1;
         let b = area.region.bounds();
         let Settings {
@@ -435,6 +438,7 @@ impl<'a> Filling<'a> {
             drawn = self.retraced(drawn)?;
         }
         let drawn = self.within_ink(drawn);
+        crate::cancel::checkpoint()?;
         let composed = compose(
             &area.region,
             &drawn.marks,

@@ -136,6 +136,9 @@ fn lloyd_weighed(
     let mut moved = sites.to_vec();
     let (mut energy, mut total, mut max) = (0.0, 0.0, 0.0f64);
     for (i, cell) in diagram.cells.iter().enumerate() {
+        // A cell's density integral samples the density (a formula) many
+        // times; a step on 50,000 cells is too long to wait out.
+        crate::cancel::checkpoint()?;
         if cell.is_empty() {
             continue;
         }
@@ -324,6 +327,7 @@ pub fn relax(
     let mut converged = false;
     let mut work = 0usize;
     for k in 0..how.steps {
+        crate::cancel::checkpoint()?;
         work = work.saturating_add(sites.len());
         if work > how.max_site_steps {
             return Err(Error::invalid(
@@ -434,6 +438,7 @@ fn lbg_step(
     // would move if it stayed.
     let mut light = Vec::new();
     for (i, cell) in diagram.cells.iter().enumerate() {
+        crate::cancel::checkpoint()?;
         let site = sites[i];
         let origin = site.to_vec2();
         let m = if cell.is_empty() {

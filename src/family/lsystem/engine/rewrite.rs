@@ -28,6 +28,10 @@ use super::grammar::{self, Alphabet, Formal, Pattern, Production, Successor};
 use crate::error::{Error, Result};
 use crate::rng::RandomStream;
 
+/// Modules rewritten between two looks at whether the render was called
+/// off (`crate::cancel::checkpoint`): some microseconds of work.
+const CHECK_EVERY: usize = 4096;
+
 /// An L-system: axiom, productions, constants and ignored symbols, parsed
 /// and ready to derive.
 ///
@@ -387,7 +391,7 @@ impl LSystem {
             iteration,
         };
         if self.simple {
-            self.simple_step(word, &mut out);
+            self.simple_step(word, &mut out)?;
         } else {
             self.general_step(word, &mut out, rng, max_modules)?;
         }
@@ -414,7 +418,7 @@ impl LSystem {
         (modules, params, exact)
     }
 
-    fn simple_step(&self, word: &Word, out: &mut Word) {
+    fn simple_step(&self, word: &Word, out: &mut Word) -> Result<()> {
         // Each letter becomes a fixed byte string: itself or its successor.
         let mut table: Vec<&[u8]> = Vec::with_capacity(self.actions.len());
         let letters: Vec<u8> = (0..=255u8).collect();
@@ -424,9 +428,13 @@ impl LSystem {
                 _ => &letters[id..=id],
             });
         }
-        for &s in &word.syms {
-            out.syms.extend_from_slice(table[usize::from(s)]);
+        for chunk in word.syms.chunks(CHECK_EVERY) {
+            crate::cancel::checkpoint()?;
+            for &s in chunk {
+                out.syms.extend_from_slice(table[usize::from(s)]);
+            }
         }
+        Ok(())
     }
 
     fn general_step(
@@ -443,6 +451,9 @@ impl LSystem {
         let mut stack = Vec::new();
         let mut at = 0;
         for (i, &s) in word.syms.iter().enumerate() {
+            if i % CHECK_EVERY == 0 {
+                crate::cancel::checkpoint()?;
+            }
             let arity = alphabet.arity(s);
             let own = &word.params[at..at + arity];
             match &self.actions[usize::from(s)] {

@@ -904,3 +904,23 @@ proptest! {
         }
     }
 }
+
+/// A render called off stops the rewriting and the drawing within a few
+/// thousand modules: a word of millions is not waited out. Counted in
+/// modules: the flag raised once the word has 8,192, both stop.
+#[test]
+fn rewriting_and_drawing_stop_when_the_render_is_called_off() {
+    let simple = system("F", &["F -> FF"]);
+    let general = system("F(1)", &["F(x) -> F(x)F(x)"]);
+    for s in [&simple, &general] {
+        let cancel = crate::cancel::Cancel::default();
+        let _entered = cancel.enter();
+        let word = derive(s, 13);
+        assert_eq!(word.len(), 8192);
+        cancel.raise();
+        let stopped = s.step(&word, &mut Seed(1).stream(), 50_000_000);
+        assert!(matches!(stopped, Err(crate::Error::Cancelled)), "{stopped:?}");
+        let drawn = Turtle::new(TurtleOptions::DEFAULT).interpret(&word);
+        assert!(matches!(drawn, Err(crate::Error::Cancelled)));
+    }
+}

@@ -478,6 +478,10 @@ impl Turtle {
         let mut extent = start;
         let mut i = 0;
         while i < syms.len() {
+            if i % 4096 == 0 {
+                // Millions of modules: a newer edit stops the drawing.
+                crate::cancel::checkpoint()?;
+            }
             let sym = syms[i];
             work.interpreted += 1;
             let s = usize::from(sym);
