@@ -401,3 +401,18 @@ fn a_shape_linesweeper_panics_on_hides_the_line_behind_it_and_prints_no_panic() 
     assert!((hidden_from - 44.4376).abs() < 0.01, "{d}");
     assert!((hidden_to - 50.4266).abs() < 0.01, "{d}");
 }
+
+/// 400 nested `scale(10)`: each number is fine, together they overflow,
+/// and usvg dropped the path without a word. Refused naming the element
+/// and its transform (issue 36, item 7).
+#[test]
+fn transforms_nested_past_what_can_be_plotted_are_refused_naming_the_element() {
+    let name = "svg-400-nested-scale-10.svg";
+    plot_is_refused(
+        name,
+        &hostile(name),
+        &[],
+        "<g> transform: 'scale(10)' with the transforms of the elements around it comes to \
+         1.0e39, beyond ±3.4028235e38",
+    );
+}
