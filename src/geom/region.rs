@@ -1070,6 +1070,15 @@ pub(crate) mod tests {
         assert!(m.difference(&r).area() < 1e-6);
     }
 
+    /// The smallest path linesweeper 0.5.0 panics on, in both modes
+    /// (docs/upstream/linesweeper-entry-at.md): a cubic running out and
+    /// back over itself, beside a lens.
+    pub(crate) const LINESWEEPER_PANICS: &str = "M5,0 C-4.1047816988348345,-0.0003431058438748062 \
+         -37.005054534714155,-338.55295269539465 \
+         -4.1047816988348345,-0.0003431058438748062 \
+         L0.0003382448762586695,-0.0003433421904350702 Z \
+         M0,-27 Q-10,-7 0,0 L-1,0 Z";
+
     /// Regression (issue 36, item 5): linesweeper panics in both modes on
     /// a cubic running out and back over itself beside a lens; the
     /// polygon reference answers, with the area shapely gives the two
@@ -1077,14 +1086,7 @@ pub(crate) mod tests {
     /// promises.
     #[test]
     fn regression_linesweeper_panics_on_a_retraced_cubic_beside_a_lens() {
-        let p = BezPath::from_svg(
-            "M5,0 C-4.1047816988348345,-0.0003431058438748062 \
-             -37.005054534714155,-338.55295269539465 \
-             -4.1047816988348345,-0.0003431058438748062 \
-             L0.0003382448762586695,-0.0003433421904350702 Z \
-             M0,-27 Q-10,-7 0,0 L-1,0 Z",
-        )
-        .unwrap();
+        let p = BezPath::from_svg(LINESWEEPER_PANICS).unwrap();
         let within = allowance(&[&p]);
         let r = Region::new(p, FillRule::NonZero).unwrap();
         // Flattened within the toolkit's tolerance (0.8 mm² short along
