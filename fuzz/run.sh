@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 seconds=${1:-60}
-targets=(scene_toml scene_json svg render_from obj image lsystem_rules stroke scene_extremes)
+targets=(scene_toml scene_json svg render_from obj image lsystem_rules stroke scene_extremes regions)
 
 cargo afl build --release --locked --quiet
 export AFL_SKIP_CPUFREQ=1 AFL_I_DONT_CARE_ABOUT_MISSING_CRASHES=1 AFL_NO_UI=1

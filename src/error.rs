@@ -130,9 +130,13 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
-    /// A user motif or path file could not be used.
-    #[error("motif {name}: {message}")]
+    /// A file a description names (a motif, a paths table's or a
+    /// sketch's SVG, an image, a mesh) could not be used.
+    #[error("{kind} {name}: {message}")]
     Motif {
+        /// What the file is to the description, as messages word it:
+        /// [`UserFile`].
+        kind: UserFile,
         /// The file as named in the description.
         name: String,
         /// What is wrong with it, including the cause's message.
@@ -264,6 +268,32 @@ pub type Cause = Box<dyn std::error::Error + Send + Sync + 'static>;
 
 /// `Result` with moyo's [`Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What a file a description names is to it: the word an
+/// [`Error::Motif`] starts with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UserFile {
+    /// A user motif (`[[…motifs]] svg = …`): `motif`.
+    Motif,
+    /// An SVG whose paths a table follows (a paths table's `svg`, a
+    /// sketch's stroke): `paths file`.
+    Paths,
+    /// A density image (PNG or JPEG): `image`.
+    Image,
+    /// A triangle mesh (OBJ): `mesh`.
+    Mesh,
+}
+
+impl std::fmt::Display for UserFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            UserFile::Motif => "motif",
+            UserFile::Paths => "paths file",
+            UserFile::Image => "image",
+            UserFile::Mesh => "mesh",
+        })
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -83,11 +83,16 @@ pub enum Target {
     /// Choices that edit a built-in description at its limits (see the
     /// module docs).
     SceneExtremes,
+    /// Bytes read as a few small closed paths (see [`regions`]): their
+    /// regions combined every way, then drawn filled over lines through
+    /// the occlude and hatch stages. No path or segment cap stops them
+    /// before the booleans; their size is small by construction.
+    Regions,
 }
 
 impl Target {
     /// Every target.
-    pub const ALL: [Target; 9] = [
+    pub const ALL: [Target; 10] = [
         Target::SceneToml,
         Target::SceneJson,
         Target::Svg,
@@ -97,6 +102,7 @@ impl Target {
         Target::LsystemRules,
         Target::Stroke,
         Target::SceneExtremes,
+        Target::Regions,
     ];
 
     /// Its name: the fuzz binary's and its corpus folder's.
@@ -111,6 +117,7 @@ impl Target {
             Target::LsystemRules => "lsystem_rules",
             Target::Stroke => "stroke",
             Target::SceneExtremes => "scene_extremes",
+            Target::Regions => "regions",
         }
     }
 
@@ -141,6 +148,7 @@ impl Target {
             Target::LsystemRules => lsystem_rules(text(bytes)?),
             Target::Stroke => stroke(bytes),
             Target::SceneExtremes => extremes(bytes),
+            Target::Regions => regions(bytes),
         }
     }
 }
@@ -174,9 +182,18 @@ fn scene_with(text: &str, format: Format, file: &dyn Fn(&str) -> Option<Vec<u8>>
 
 /// Imports an SVG and runs every plot stage and output on it.
 fn svg(text: &str) -> Result<()> {
+    svg_with(text, false)
+}
+
+/// As [`svg`], the occlude stage merging closed shapes into
+/// `silhouettes` first when asked.
+fn svg_with(text: &str, silhouettes: bool) -> Result<()> {
     let imported = import_svg(text, &ImportOptions::DEFAULT)?;
     let stages = PlotOptions {
-        occlude: Some(OccludeOptions::default()),
+        occlude: Some(OccludeOptions {
+            silhouettes,
+            ..OccludeOptions::default()
+        }),
         hatch: Some(HatchOptions::default()),
         dedupe: Some(DedupeOptions::default()),
         merge: Some(MergeOptions::default()),
@@ -224,6 +241,127 @@ fn stroke(bytes: &[u8]) -> Result<()> {
     scene_with(STROKE_SCENE, Format::Toml, &|name| {
         (name == "stroke.svg").then(|| bytes.to_vec())
     })
+}
+
+/// Most paths, subpaths a path and points a subpath of a
+/// [`Target::Regions`] case: small, so that a case runs in milliseconds
+/// and the fuzzer's time goes to the shapes, not their number.
+const REGION_PATHS: u8 = 4;
+const REGION_SUBPATHS: u8 = 3;
+const REGION_POINTS: u8 = 12;
+
+/// Reads up to [`REGION_PATHS`] closed paths from `bytes`, each with its
+/// fill rule; makes their regions and combines them every way
+/// (union, intersection, difference, xor, of two and of all); then draws
+/// them filled, in front of lines crossing the page, through the occlude
+/// (with silhouettes), hatch and pen stages, as the `svg` target does.
+/// The shapes the property tests found hard are easy to reach: points
+/// read as raw numbers, a hair from zero, repeated, and cubics that run
+/// out and back over themselves (see [`region_path`]).
+fn regions(bytes: &[u8]) -> Result<()> {
+    use crate::geom::region::{FillRule, Region};
+    let mut u = Unstructured::new(bytes);
+    let count = 1 + byte(&mut u)? % REGION_PATHS;
+    let mut made = Vec::new();
+    let mut body = String::new();
+    for k in 0..count {
+        let even_odd = byte(&mut u)? % 2 == 1;
+        let path = region_path(&mut u)?;
+        let rule = if even_odd {
+            FillRule::EvenOdd
+        } else {
+            FillRule::NonZero
+        };
+        body.push_str(&format!(
+            "<path d=\"M-200 {y} L300 {y}\" stroke=\"blue\" fill=\"none\"/>\
+             <path d=\"{}\" fill=\"#{:02x}0000\" fill-rule=\"{}\" stroke=\"black\"/>",
+            path.to_svg(),
+            40 * k + 60,
+            if even_odd { "evenodd" } else { "nonzero" },
+            y = 25 * k,
+        ));
+        if let Ok(region) = Region::new(path, rule) {
+            made.push(region);
+        }
+    }
+    if let [a, b, ..] = &made[..] {
+        for combined in [a.union(b), a.intersection(b), a.difference(b), a.xor(b)] {
+            let _ = combined.components();
+        }
+    }
+    let _ = Region::union_all(&made);
+    let _ = Region::intersection_all(&made);
+    if let Some((first, rest)) = made.split_first() {
+        let _ = first.difference_all(rest);
+    }
+    let svg_text = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="-50 -50 100 100">{body}</svg>"#
+    );
+    svg_with(&svg_text, true)
+}
+
+/// One closed path of a [`Target::Regions`] case: up to
+/// [`REGION_SUBPATHS`] subpaths of up to [`REGION_POINTS`] points, each
+/// reached by a line, a quadratic, a cubic, or a cubic that runs out and
+/// back over itself (its second control point the point it ends on).
+fn region_path(u: &mut Unstructured<'_>) -> Result<kurbo::BezPath> {
+    let mut path = kurbo::BezPath::new();
+    for _ in 0..=byte(u)? % REGION_SUBPATHS {
+        let mut last = region_point(u, kurbo::Point::ZERO)?;
+        path.move_to(last);
+        for _ in 1..=byte(u)? % REGION_POINTS {
+            let kind = byte(u)? % 4;
+            let to = region_point(u, last)?;
+            match kind {
+                0 => path.line_to(to),
+                1 => path.quad_to(region_point(u, last)?, to),
+                2 => path.curve_to(region_point(u, last)?, region_point(u, to)?, to),
+                _ => path.curve_to(to, last, to),
+            }
+            last = to;
+        }
+        path.close_path();
+    }
+    Ok(path)
+}
+
+/// A point of a [`Target::Regions`] path: each coordinate a small number
+/// (hundredths of a millimetre), 0, 10, a raw `f64` (any value a file
+/// could hold, within the largest coordinate moyo takes), a hair from
+/// zero, or the coordinate of `near`.
+fn region_point(u: &mut Unstructured<'_>, near: kurbo::Point) -> Result<kurbo::Point> {
+    let mut coordinate = |near: f64| -> Result<f64> {
+        let pair = |u: &mut Unstructured<'_>| -> Result<i16> {
+            Ok(i16::from_le_bytes([byte(u)?, byte(u)?]))
+        };
+        Ok(match byte(u)? % 6 {
+            0 => f64::from(pair(u)?) / 100.0,
+            1 => 0.0,
+            2 => 10.0,
+            3 => {
+                let mut raw = [0u8; 8];
+                for b in &mut raw {
+                    *b = byte(u)?;
+                }
+                let v = f64::from_le_bytes(raw);
+                if v.is_finite() {
+                    v.clamp(-crate::units::MAX_COORD, crate::units::MAX_COORD)
+                } else {
+                    0.0
+                }
+            }
+            4 => f64::from(pair(u)?) * 1e-7,
+            _ => near,
+        })
+    };
+    let x = coordinate(near.x)?;
+    let y = coordinate(near.y)?;
+    Ok(kurbo::Point::new(x, y))
+}
+
+/// The next byte of the choices.
+fn byte(u: &mut Unstructured<'_>) -> Result<u8> {
+    u.arbitrary::<u8>().map_err(choices)
 }
 
 /// The built-in descriptions [`Target::SceneExtremes`] starts from: one
@@ -400,12 +538,30 @@ mod tests {
             assert_eq!(Target::from_name(t.name()), Some(t));
             assert!(
                 t.run(&[0xff, 0xfe, 0x00]).is_err()
-                    || [Target::Image, Target::SceneExtremes].contains(&t),
+                    || [Target::Image, Target::SceneExtremes, Target::Regions].contains(&t),
                 "{t:?}"
             );
             assert!(t.run(&vec![b' '; MAX_INPUT + 1]).is_err(), "{t:?}");
         }
         assert_eq!(Target::from_name("nothing"), None);
+    }
+
+    /// The kept `regions` case reads back as the path linesweeper 0.5.0
+    /// panics on (docs/upstream/linesweeper-entry-at.md), and runs.
+    #[test]
+    fn the_regions_crasher_is_the_path_linesweeper_panics_on() {
+        let bytes = std::fs::read(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("fuzz/crashers/regions/linesweeper-retraced-cubic.bin"),
+        )
+        .unwrap();
+        let mut u = Unstructured::new(&bytes[2..]);
+        let path = region_path(&mut u).unwrap();
+        let expected =
+            kurbo::BezPath::from_svg(crate::geom::region::tests::LINESWEEPER_PANICS).unwrap();
+        assert_eq!(path, expected);
+        assert!(u.is_empty());
+        Target::Regions.run(&bytes).unwrap();
     }
 
     /// Bytes from a fixed xorshift stream, as a fuzzer's would be.

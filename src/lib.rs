@@ -102,7 +102,7 @@ pub mod units;
 // `ValidSpec`, `render` makes the scene and its SVG, `plot_scene` runs a
 // drawing through the plot stages into a plotter's format. The modules hold
 // the rest (stage options, writers' options, the geometry toolkit).
-pub use error::{Cause, Error, LineCol, Result};
+pub use error::{Cause, Error, LineCol, Result, UserFile};
 pub use input::{import_svg, ImportOptions, Imported};
 pub use output::{render_png, to_svg, SvgOptions};
 pub use project::{

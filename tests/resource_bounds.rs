@@ -361,3 +361,58 @@ fn zentangle_steps_past_their_work_are_refused_before_the_loop() {
          steps)",
     );
 }
+
+/// A shape that makes linesweeper 0.5.0 panic in both of its modes (a
+/// cubic running out and back over itself, beside a lens) in front of a
+/// line: the polygon reference takes over, the line is hidden where the
+/// shape covers it, and stderr holds no panic (issue 36, item 5).
+#[test]
+fn a_shape_linesweeper_panics_on_hides_the_line_behind_it_and_prints_no_panic() {
+    let dir = tempdir();
+    let name = "linesweeper-retraced-cubic.svg";
+    fs::write(dir.path().join(name), hostile(name)).unwrap();
+    let out = moyo(&dir)
+        .args(["plot", name, "--occlude", "-o", "out.svg"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("panicked").not())
+        .stderr(predicate::str::contains("backtrace").not());
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr);
+    assert!(
+        stderr.starts_with("wrote out.svg") && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+    let svg = fs::read_to_string(dir.path().join("out.svg")).unwrap();
+    // The line runs at y = −15 from x = −20 to 10 (30 to 60 on the page);
+    // shapely, on both contours sampled finely, hides it from x = −5.5624
+    // to 0.4266.
+    let d = svg
+        .split("d=\"")
+        .find(|d| d.starts_with("M 30 335"))
+        .and_then(|d| d.split('"').next())
+        .expect("the line is drawn");
+    let numbers: Vec<f64> = d
+        .split([' ', 'M', 'L'])
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    let [_, _, hidden_from, _, hidden_to, _, _, _] = numbers[..] else {
+        panic!("the line is not in two pieces: {d}");
+    };
+    assert!((hidden_from - 44.4376).abs() < 0.01, "{d}");
+    assert!((hidden_to - 50.4266).abs() < 0.01, "{d}");
+}
+
+/// 400 nested `scale(10)`: each number is fine, together they overflow,
+/// and usvg dropped the path without a word. Refused naming the element
+/// and its transform (issue 36, item 7).
+#[test]
+fn transforms_nested_past_what_can_be_plotted_are_refused_naming_the_element() {
+    let name = "svg-400-nested-scale-10.svg";
+    plot_is_refused(
+        name,
+        &hostile(name),
+        &[],
+        "<g> transform: 'scale(10)' with the transforms of the elements around it comes to \
+         1.0e39, beyond ±3.4028235e38",
+    );
+}

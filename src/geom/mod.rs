@@ -15,6 +15,7 @@
 pub mod clip;
 pub mod density;
 pub mod depth;
+pub(crate) mod engine_panic;
 pub(crate) mod mesh;
 pub mod offset;
 pub mod polylabel;

@@ -386,8 +386,15 @@ fn drop_short(runs: &mut Vec<(f64, f64)>, total: f64, closed: bool, shortest: f6
 }
 
 /// Whether `s` lies in one of `runs`.
+///
+/// `runs` are sorted and apart, so the one run that may hold `s` is the
+/// last starting at or before it: a binary search. A long subpath has
+/// thousands of runs and each of its pieces asks, and a scan of them all
+/// made the stage quadratic (the dragon curve at 21 iterations, one path
+/// of two million segments, spent all its time here; issue 36).
 fn inside(runs: &[(f64, f64)], s: f64) -> bool {
-    runs.iter().any(|&(lo, hi)| lo <= s && s <= hi)
+    let i = runs.partition_point(|&(lo, _)| lo <= s);
+    i > 0 && s <= runs[i - 1].1
 }
 
 /// The runs of `0..total` outside `cuts` (sorted, apart), each longer
@@ -415,6 +422,27 @@ mod tests {
 
     use super::*;
     use crate::scene::{Color, Style};
+
+    #[test]
+    fn a_length_is_inside_the_sorted_runs_that_hold_it_ends_included() {
+        let runs = [(1.0, 2.0), (3.0, 3.0), (5.0, 8.0)];
+        for (s, want) in [
+            (0.5, false),
+            (1.0, true),
+            (1.5, true),
+            (2.0, true),
+            (2.5, false),
+            (3.0, true),
+            (4.0, false),
+            (8.0, true),
+            (9.0, false),
+            (f64::NAN, false),
+        ] {
+            assert_eq!(inside(&runs, s), want, "{s}");
+            assert_eq!(runs.iter().any(|&(lo, hi)| lo <= s && s <= hi), want, "{s}");
+        }
+        assert!(!inside(&[], 1.0));
+    }
 
     fn line(id: &str, points: &[(f64, f64)]) -> StyledPath {
         let mut path = BezPath::new();

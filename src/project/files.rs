@@ -6,7 +6,7 @@ use std::path::Path;
 
 use kurbo::BezPath;
 
-use crate::error::{Cause, Error, Result};
+use crate::error::{Cause, Error, Result, UserFile};
 use crate::geom::mesh::TriMesh;
 use crate::input::{decode_image, import_svg, ImportOptions};
 use crate::motif::{user_drawing, Library};
@@ -87,17 +87,23 @@ pub fn load_motifs(spec: &ValidSpec, base: &Path) -> Result<Library> {
 pub fn load_motifs_with(spec: &ValidSpec, read: &FileReader<'_>) -> Result<Library> {
     let mut library = Library::new();
     let files = user_files(spec);
-    let open = |name: &str| {
+    let open = |kind: UserFile, name: &str| {
         let (shown, bytes) = read(name);
         match bytes {
             Ok(bytes) => Ok((shown, bytes)),
-            Err(e) => Err(unusable(name, format!("cannot read {shown}"), e.into())),
+            Err(e) => Err(unusable(
+                kind,
+                name,
+                format!("cannot read {shown}"),
+                e.into(),
+            )),
         }
     };
     for name in &files.motifs {
-        let (shown, bytes) = open(name)?;
-        let paths = svg_paths(name, &shown, &bytes)?;
+        let (shown, bytes) = open(UserFile::Motif, name)?;
+        let paths = svg_paths(UserFile::Motif, name, &shown, &bytes)?;
         let drawing = user_drawing(&paths).map_err(|m| Error::Motif {
+            kind: UserFile::Motif,
             name: name.clone(),
             message: format!("{shown}: {m}"),
             source: None,
@@ -105,25 +111,33 @@ pub fn load_motifs_with(spec: &ValidSpec, read: &FileReader<'_>) -> Result<Libra
         library.add_user(name.clone(), drawing);
     }
     for name in &files.paths {
-        let (shown, bytes) = open(name)?;
+        let (shown, bytes) = open(UserFile::Paths, name)?;
         let mut joined = BezPath::new();
-        for p in svg_paths(name, &shown, &bytes)? {
+        for p in svg_paths(UserFile::Paths, name, &shown, &bytes)? {
             joined.extend(p.elements().iter().copied());
         }
         library.add_paths(name.clone(), joined);
     }
     for name in &files.images {
-        let (shown, bytes) = open(name)?;
-        let image = decode_image(&bytes).map_err(|e| unusable(name, shown, e.into()))?;
+        let (shown, bytes) = open(UserFile::Image, name)?;
+        let image =
+            decode_image(&bytes).map_err(|e| unusable(UserFile::Image, name, shown, e.into()))?;
         library.add_image(name.clone(), image);
     }
     for name in &files.meshes {
-        let (shown, bytes) = open(name)?;
-        let text = std::str::from_utf8(&bytes)
-            .map_err(|e| unusable(name, format!("{shown} is not UTF-8 text"), e.into()))?;
+        let (shown, bytes) = open(UserFile::Mesh, name)?;
+        let text = std::str::from_utf8(&bytes).map_err(|e| {
+            unusable(
+                UserFile::Mesh,
+                name,
+                format!("{shown} is not UTF-8 text"),
+                e.into(),
+            )
+        })?;
         let mesh = TriMesh::parse_obj(text, &shown)
             .and_then(|m| m.check_closed(&shown).map(|()| m))
             .map_err(|e| Error::Motif {
+                kind: UserFile::Mesh,
                 name: name.clone(),
                 // The mesh's own error names the file (and the line).
                 message: match e {
@@ -142,22 +156,23 @@ pub fn load_motifs_with(spec: &ValidSpec, read: &FileReader<'_>) -> Result<Libra
 pub type FileReader<'a> = dyn Fn(&str) -> (String, std::io::Result<Vec<u8>>) + 'a;
 
 /// A user file that could not be used: `message`, then the cause's own.
-fn unusable(name: &str, message: String, cause: Cause) -> Error {
+fn unusable(kind: UserFile, name: &str, message: String, cause: Cause) -> Error {
     Error::Motif {
+        kind,
         name: name.to_string(),
         message: format!("{message}: {cause}"),
         source: Some(cause),
     }
 }
 
-/// The paths of the SVG file `name` (shown as `shown`), in its mm: the
+/// The paths of the SVG file `name` (a `kind` of file, shown as `shown`), in its mm: the
 /// lines it draws, not paint that no pen draws (a filled shape whose
 /// stroke is transparent, such as a white page behind the drawing).
-fn svg_paths(name: &str, shown: &str, bytes: &[u8]) -> Result<Vec<BezPath>> {
+fn svg_paths(kind: UserFile, name: &str, shown: &str, bytes: &[u8]) -> Result<Vec<BezPath>> {
     let text = std::str::from_utf8(bytes)
-        .map_err(|e| unusable(name, format!("{shown} is not UTF-8 text"), e.into()))?;
+        .map_err(|e| unusable(kind, name, format!("{shown} is not UTF-8 text"), e.into()))?;
     let imported = import_svg(text, &ImportOptions::DEFAULT)
-        .map_err(|e| unusable(name, shown.to_string(), e.into()))?;
+        .map_err(|e| unusable(kind, name, shown.to_string(), e.into()))?;
     let mut paths: Vec<BezPath> = Vec::new();
     imported.scene.visit_paths(|_, p, t| {
         if p.style.is_drawn() {
@@ -176,7 +191,8 @@ mod tests {
         let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="20mm" height="20mm" viewBox="0 0 20 20">
             <rect width="20" height="20" fill="white" stroke="transparent"/>
             <path d="M2 2 L18 18" stroke="black"/></svg>"#;
-        let paths = super::svg_paths("a.svg", "a.svg", svg.as_bytes()).unwrap();
+        let paths =
+            super::svg_paths(super::UserFile::Paths, "a.svg", "a.svg", svg.as_bytes()).unwrap();
         assert_eq!(paths.len(), 1);
         assert_eq!(paths[0].elements().len(), 2);
     }

@@ -177,7 +177,7 @@ fn errors_name_the_field() {
         ),
         (
             "[[layers.paths]]\nsvg = \"nowhere.svg\"\n",
-            "motif nowhere.svg: cannot read",
+            "paths file nowhere.svg: cannot read",
         ),
     ];
     for (body, wanted) in cases {

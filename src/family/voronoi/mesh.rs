@@ -113,8 +113,8 @@ pub(crate) fn triangulate(sites: &[Point], region: &Region) -> Result<Mesh> {
     }
     let budget = ADDED_PER_VERTEX * vertices.len() + 100;
     // spade asserts on inputs it cannot take; that is an error here, not a
-    // panic.
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(move || {
+    // panic, and nothing is printed of it.
+    crate::geom::engine_panic::catch(move || {
         let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
             ConstrainedDelaunayTriangulation::try_bulk_load_cdt(vertices, constraints, |_| {})
                 .ok()?;
@@ -157,8 +157,7 @@ pub(crate) fn triangulate(sites: &[Point], region: &Region) -> Result<Mesh> {
         mesh.inner.sort_unstable();
         mesh.outline.sort_unstable();
         Some(mesh)
-    }))
-    .ok()
+    })
     .flatten()
     .ok_or_else(geometry)
 }

@@ -466,8 +466,10 @@ fn images_are_read_by_the_caller_from_png_or_jpeg() {
         "sites = { distribution = \"uniform\", count = 5, image = \"motifs/broken.svg\" }\n";
     let spec = SceneSpec::parse(&text(table), Format::Toml).unwrap();
     let e = crate::project::load_motifs(&spec, &fixtures).unwrap_err();
+    // Worded as what it is to the table: an image, not a motif.
     assert!(
-        e.to_string().contains("broken.svg") && e.to_string().contains("not a PNG or JPEG"),
+        e.to_string().starts_with("image motifs/broken.svg: ")
+            && e.to_string().contains("not a PNG or JPEG"),
         "{e}"
     );
     assert!(std::error::Error::source(&e).is_some());

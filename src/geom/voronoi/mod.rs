@@ -75,7 +75,6 @@
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
-use std::panic::AssertUnwindSafe;
 
 use i_overlay::core::fill_rule::FillRule as IFill;
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -416,10 +415,8 @@ impl Domain {
             let y = g.y0 + j as f64 * g.sy;
             lines.push(vec![[b.x0, y], [b.x1, y]]);
         }
-        let cut = std::panic::catch_unwind(AssertUnwindSafe(|| {
-            subject.slice_by(&lines, IFill::NonZero)
-        }));
-        let Ok(shapes) = cut else {
+        let cut = super::engine_panic::catch(|| subject.slice_by(&lines, IFill::NonZero));
+        let Some(shapes) = cut else {
             whole(self, subject);
             return;
         };
@@ -977,7 +974,7 @@ impl Hasher for SquareHasher {
 
 /// Runs `f`, turning a panic of a geometry engine into [`Error::Geometry`].
 fn guard<T>(operation: &str, f: impl FnOnce() -> T) -> Result<T> {
-    std::panic::catch_unwind(AssertUnwindSafe(f)).map_err(|_| Error::Geometry {
+    super::engine_panic::catch(f).ok_or_else(|| Error::Geometry {
         operation: operation.into(),
     })
 }

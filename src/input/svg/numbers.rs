@@ -6,6 +6,9 @@
 //! with (path data, transform lists, number lists, lengths), so that the
 //! numbers checked are the numbers usvg would use.
 
+use std::str::FromStr;
+
+use kurbo::Affine;
 use resvg::usvg::roxmltree;
 use svgtypes::{
     LengthListParser, NumberListParser, PathParser, PathSegment, TransformListParser,
@@ -59,13 +62,9 @@ pub(super) fn check_numbers(text: &str, node: roxmltree::Node<'_, '_>) -> Result
             continue;
         };
         if let Some(bad) = bad_number(attr.value(), grammar) {
-            let element = match node.attribute("id") {
-                Some(id) => format!("<{} id=\"{id}\">", node.tag_name().name()),
-                None => format!("<{}>", node.tag_name().name()),
-            };
             return Err(Error::Invalid {
                 at: Some(LineCol::of_offset(text, attr.range_value().start)),
-                field: format!("{element} {}", attr.name()),
+                field: format!("{} {}", element_name(node), attr.name()),
                 message: format!(
                     "'{bad}' is not a plottable number (NaN, infinite, or beyond \
                      ±{:e})",
@@ -75,6 +74,64 @@ pub(super) fn check_numbers(text: &str, node: roxmltree::Node<'_, '_>) -> Result
         }
     }
     Ok(())
+}
+
+/// Rejects an element whose `transform`, composed with the transforms of
+/// the elements around it, scales or moves the drawing beyond what usvg
+/// can hold: each number may be fine (`scale(10)`) and 400 nested ones
+/// overflow, and usvg then drops the element without a word.
+///
+/// # Errors
+/// [`Error::Invalid`] naming the element, its transform and the scale it
+/// comes to, at the transform's value.
+pub(super) fn check_composed_transforms(text: &str, doc: &roxmltree::Document<'_>) -> Result<()> {
+    let mut stack = vec![(doc.root_element(), Affine::IDENTITY)];
+    while let Some((node, outer)) = stack.pop() {
+        let mut composed = outer;
+        let own = node
+            .attributes()
+            .find(|a| a.name() == "transform" && a.namespace().is_none());
+        if let Some(attr) = own {
+            // A transform svgtypes cannot read is usvg's to refuse.
+            if let Ok(t) = svgtypes::Transform::from_str(attr.value()) {
+                composed = outer * Affine::new([t.a, t.b, t.c, t.d, t.e, t.f]);
+                let largest = composed.as_coeffs().into_iter().fold(0.0f64, |m, c| {
+                    if c.is_nan() {
+                        f64::INFINITY
+                    } else {
+                        m.max(c.abs())
+                    }
+                });
+                if largest > LARGEST {
+                    return Err(Error::Invalid {
+                        at: Some(LineCol::of_offset(text, attr.range_value().start)),
+                        field: format!("{} transform", element_name(node)),
+                        message: format!(
+                            "'{}' with the transforms of the elements around it comes to \
+                             {largest:.1e}, beyond ±{:e}, the most moyo can plot (the element \
+                             would be lost)",
+                            attr.value(),
+                            f32::MAX
+                        ),
+                    });
+                }
+            }
+        }
+        stack.extend(
+            node.children()
+                .filter(|n| n.is_element())
+                .map(|n| (n, composed)),
+        );
+    }
+    Ok(())
+}
+
+/// `<tag id="…">`, or `<tag>` without an id: how an error names an element.
+fn element_name(node: roxmltree::Node<'_, '_>) -> String {
+    match node.attribute("id") {
+        Some(id) => format!("<{} id=\"{id}\">", node.tag_name().name()),
+        None => format!("<{}>", node.tag_name().name()),
+    }
 }
 
 /// The first number of `value` that usvg could not hold: one svgtypes
@@ -195,7 +252,7 @@ fn number_at(value: &str, position: usize) -> Option<(&str, f64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::{doc, import_err};
+    use super::super::test_support::{doc, import, import_err};
     use super::*;
 
     #[test]
@@ -232,6 +289,28 @@ mod tests {
             bad("M 0 0 L Infinity 3", Grammar::PathData).as_deref(),
             Some("Infinity")
         );
+    }
+
+    /// Issue 36, item 7: each `scale(10)` is a fine number, 400 nested
+    /// come to 1e400, and usvg dropped the path without a word.
+    #[test]
+    fn transforms_nested_past_what_usvg_holds_are_refused_naming_the_element() {
+        let nested = |n: usize| {
+            format!(
+                "{}<path d=\"M0 0L1 1\" stroke=\"black\"/>{}",
+                r#"<g transform="scale(10)">"#.repeat(n),
+                "</g>".repeat(n)
+            )
+        };
+        let e = import_err(&doc(&nested(400))).to_string();
+        assert!(
+            e.contains("<g> transform: 'scale(10)' with the transforms of the elements around it comes to 1.0e39"),
+            "{e}"
+        );
+        assert!(e.contains("beyond ±3.4028235e38"), "{e}");
+        // Scales that undo each other are as small as they come to.
+        let undone = r#"<g transform="scale(1e3)"><g transform="scale(1e-3)"><path d="M0 0L1 1" stroke="black"/></g></g>"#;
+        assert_eq!(import(&doc(undone)).scene.path_count(), 1);
     }
 
     #[test]

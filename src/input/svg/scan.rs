@@ -11,7 +11,7 @@ use std::collections::HashMap;
 
 use resvg::usvg::roxmltree;
 
-use super::numbers::check_numbers;
+use super::numbers::{check_composed_transforms, check_numbers};
 use super::text::{property, Texts};
 use crate::error::{Error, LineCol, Result};
 use crate::scene::Layer;
@@ -93,6 +93,8 @@ pub(super) fn scan(text: &str, doc: &roxmltree::Document<'_>, px_per_inch: f64) 
             check_numbers(text, node)?;
         }
     }
+
+    check_composed_transforms(text, doc)?;
 
     let mut texts = Texts::read(text, doc, px_per_inch);
 

@@ -30,7 +30,7 @@ use std::sync::{Arc, RwLock};
 
 use kurbo::{Affine, BezPath, ParamCurveArea, Point, Shape};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, UserFile};
 use crate::geom::clip::clip_stroke;
 use crate::geom::density::GreyImage;
 use crate::geom::mesh::TriMesh;
@@ -167,6 +167,7 @@ impl Library {
     /// [`Error::Motif`] when no mesh of that name was loaded.
     pub fn mesh(&self, name: &str) -> Result<&TriMesh> {
         self.meshes.get(name).ok_or_else(|| Error::Motif {
+            kind: UserFile::Mesh,
             name: name.to_string(),
             message: "was not loaded (meshes are read by the caller of the generator)".into(),
             source: None,
@@ -179,6 +180,7 @@ impl Library {
     /// [`Error::Motif`] when no image of that name was loaded.
     pub fn image(&self, name: &str) -> Result<&GreyImage> {
         self.images.get(name).ok_or_else(|| Error::Motif {
+            kind: UserFile::Image,
             name: name.to_string(),
             message: "was not loaded (images are read by the caller of the generator)".into(),
             source: None,
@@ -191,6 +193,7 @@ impl Library {
     /// [`Error::Motif`] when no file of that name was loaded.
     pub fn paths(&self, name: &str) -> Result<&BezPath> {
         self.paths.get(name).ok_or_else(|| Error::Motif {
+            kind: UserFile::Paths,
             name: name.to_string(),
             message: "was not loaded (path files are read by the caller of the generator)".into(),
             source: None,
@@ -213,6 +216,7 @@ impl Library {
             ),
             MotifRef::File(f) => {
                 return self.user.get(&f.svg).cloned().ok_or_else(|| Error::Motif {
+                    kind: UserFile::Motif,
                     name: f.svg.clone(),
                     message: "was not loaded (user motifs are read by the caller of the generator)"
                         .into(),
